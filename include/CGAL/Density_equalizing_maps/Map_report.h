@@ -1,0 +1,93 @@
+// Copyright (c) 2026 Density_equalizing_maps contributors.
+// This file is part of Density_equalizing_maps, a third-party CGAL package.
+// SPDX-License-Identifier: GPL-3.0-or-later
+
+#ifndef CGAL_DENSITY_EQUALIZING_MAPS_MAP_REPORT_H
+#define CGAL_DENSITY_EQUALIZING_MAPS_MAP_REPORT_H
+
+#include <array>
+#include <cstddef>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace CGAL {
+namespace Density_equalizing_maps {
+
+/// \ingroup PkgDensityEqualizingMapsRef
+/// Exception thrown by every function of the package when its input is invalid:
+/// the mesh (not a triangle mesh, boundary, non-manifold, wrong genus, degenerate
+/// or non-finite face, too few vertices), the population, landmarks, radii or
+/// other parameters. `what()` names the problem and, where it applies, the
+/// offending face, vertex or line. Nothing is written to the output maps when
+/// it is thrown.
+class Invalid_input : public std::invalid_argument
+{
+public:
+  explicit Invalid_input(const std::string& what_arg) : std::invalid_argument(what_arg) {}
+};
+
+/// \ingroup PkgDensityEqualizingMapsRef
+/// How an iterative method ended.
+enum class Termination
+{
+  CONVERGED,          ///< the stopping criterion was met
+  MAXIMUM_ITERATIONS, ///< the iteration limit was reached first
+  STALLED,            ///< no fold-over-free step could be found; the last bijective map is returned
+  CANCELLED,          ///< the progress callback asked to stop; the last bijective map is returned
+  NOT_ITERATIVE       ///< a direct (non-iterative) method
+};
+
+/// \ingroup PkgDensityEqualizingMapsRef
+/// Returns a lower-case name for a termination value (`"converged"`, ...).
+inline const char* to_string(Termination t)
+{
+  switch(t) {
+    case Termination::CONVERGED: return "converged";
+    case Termination::MAXIMUM_ITERATIONS: return "maximum iterations reached";
+    case Termination::STALLED: return "stalled: no fold-over-free step";
+    case Termination::CANCELLED: return "cancelled";
+    default: return "direct method";
+  }
+}
+
+/// \ingroup PkgDensityEqualizingMapsRef
+/// What a mapping function did. Every method fills `fold_overs` with the
+/// exact-predicate count on its output; the other fields are filled where they
+/// apply and are otherwise left at their default (negative = not applicable).
+struct Map_report
+{
+  Termination termination = Termination::NOT_ITERATIVE;
+  /// number of outer iterations of an iterative method
+  std::size_t iterations = 0;
+  /// faces whose image is inverted, counted with exact predicates
+  std::size_t fold_overs = 0;
+  /// final value of the stopping quantity (sd/mean of the density for the
+  /// density-equalizing maps, update norm for LSDEM); negative if not applicable
+  double final_error = -1;
+  /// initial value of the stopping quantity
+  double initial_error = -1;
+  /// number of Linear Beltrami Solver repairs performed
+  std::size_t repairs = 0;
+  /// number of times the time step was halved during repairs
+  std::size_t step_halvings = 0;
+  /// mean distance between mapped landmarks and their targets (landmark methods)
+  double landmark_error = -1;
+  /// ellipsoid radii (a,b,c) or torus radii (R,r,0) used or found; empty otherwise
+  std::vector<double> radii;
+  /// true when the Tutte fallback replaced the cotangent harmonic map
+  bool used_tutte_fallback = false;
+  /// a human-readable note on anything unusual (e.g. why a run stalled)
+  std::string message;
+
+  /// true when the output is a bijective map (no fold-over)
+  bool is_bijective() const { return fold_overs == 0; }
+  /// true when the method met its stopping criterion (or is direct)
+  bool converged() const
+  { return termination == Termination::CONVERGED || termination == Termination::NOT_ITERATIVE; }
+};
+
+} // namespace Density_equalizing_maps
+} // namespace CGAL
+
+#endif // CGAL_DENSITY_EQUALIZING_MAPS_MAP_REPORT_H

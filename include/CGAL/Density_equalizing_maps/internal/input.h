@@ -1,0 +1,77 @@
+// Copyright (c) 2026 Density_equalizing_maps contributors.
+// This file is part of Density_equalizing_maps, a third-party CGAL package.
+// SPDX-License-Identifier: GPL-3.0-or-later
+
+#ifndef CGAL_DENSITY_EQUALIZING_MAPS_INTERNAL_INPUT_H
+#define CGAL_DENSITY_EQUALIZING_MAPS_INTERNAL_INPUT_H
+
+// What every public function does first: read the named parameters shared by
+// all methods, extract the arrays and validate them.
+
+#include <CGAL/Density_equalizing_maps/parameters.h>
+#include <CGAL/Density_equalizing_maps/internal/mesh_arrays.h>
+#include <CGAL/Density_equalizing_maps/internal/sparse_solver.h>
+#include <CGAL/Density_equalizing_maps/internal/validation.h>
+
+#include <CGAL/boost/graph/named_params_helper.h>
+
+namespace CGAL {
+namespace Density_equalizing_maps {
+namespace internal {
+
+/// The arrays of a validated closed surface of the given Euler characteristic.
+template <class TriangleMesh, class NamedParameters>
+Mesh_arrays<TriangleMesh> closed_surface_arrays(const TriangleMesh& tm, const NamedParameters& np, long euler)
+{
+  using CGAL::parameters::choose_parameter;
+  using CGAL::parameters::get_parameter;
+  auto vpm = choose_parameter(get_parameter(np, internal_np::vertex_point), get_const_property_map(vertex_point, tm));
+  auto vim = CGAL::get_initialized_vertex_index_map(tm, np);
+  Mesh_arrays<TriangleMesh> a = to_arrays(tm, vpm, vim);
+  validate_closed_surface(a.X, a.F, euler, euler == 2 ? 4 : 7);
+  return a;
+}
+
+/// The linear solver chosen with `sparse_linear_solver` (default: Default_sparse_solver_traits).
+template <class NamedParameters>
+std::unique_ptr<Spd_solver> solver_from_parameters(const NamedParameters& np)
+{
+  using CGAL::parameters::choose_parameter;
+  using CGAL::parameters::get_parameter;
+  typedef typename internal_np::Lookup_named_param_def<internal_np::sparse_linear_solver_t, NamedParameters,
+                                                       Default_sparse_solver_traits>::type Traits;
+  return make_spd_solver(choose_parameter<Traits>(get_parameter(np, internal_np::sparse_linear_solver)));
+}
+
+/// The per-face population from `face_population_map`, or from
+/// `vertex_density_map` (averaged on faces, times the face area), or the face
+/// area of the input (area-preserving). Validated.
+template <class TriangleMesh, class NamedParameters>
+Vector population_from_parameters(const Mesh_arrays<TriangleMesh>& a, const NamedParameters& np)
+{
+  using CGAL::parameters::get_parameter;
+  using CGAL::parameters::is_default_parameter;
+  Vector p;
+  if constexpr(!is_default_parameter<NamedParameters, internal_np::face_population_t>::value) {
+    p = read_face_values(a, get_parameter(np, internal_np::face_population));
+    validate_population(p, a.F.rows());
+  } else if constexpr(!is_default_parameter<NamedParameters, internal_np::vertex_density_t>::value) {
+    const Vector rho = read_vertex_values(a, get_parameter(np, internal_np::vertex_density));
+    for(Eigen::Index i = 0; i < rho.size(); ++i)
+      if(!std::isfinite(rho[i]) || !(rho[i] > 0))
+        throw Invalid_input("non-positive or non-finite vertex density at vertex " + std::to_string(i));
+    const Vector area = face_areas(a.X, a.F);
+    p.resize(a.F.rows());
+    for(Eigen::Index k = 0; k < a.F.rows(); ++k)
+      p[k] = area[k] * (rho[a.F(k, 0)] + rho[a.F(k, 1)] + rho[a.F(k, 2)]) / 3.;
+  } else {
+    p = face_areas(a.X, a.F);
+  }
+  return p;
+}
+
+} // namespace internal
+} // namespace Density_equalizing_maps
+} // namespace CGAL
+
+#endif // CGAL_DENSITY_EQUALIZING_MAPS_INTERNAL_INPUT_H

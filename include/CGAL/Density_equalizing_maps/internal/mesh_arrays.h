@@ -1,0 +1,128 @@
+// Copyright (c) 2026 Density_equalizing_maps contributors.
+// This file is part of Density_equalizing_maps, a third-party CGAL package.
+// SPDX-License-Identifier: GPL-3.0-or-later
+
+#ifndef CGAL_DENSITY_EQUALIZING_MAPS_INTERNAL_MESH_ARRAYS_H
+#define CGAL_DENSITY_EQUALIZING_MAPS_INTERNAL_MESH_ARRAYS_H
+
+// The numerical core works on index arrays (positions n x 3, triangles m x 3),
+// extracted once from the user's FaceListGraph. This keeps the algorithms
+// free of graph templates (one instantiation, fast builds) and gives every
+// operator contiguous data.
+
+#include <CGAL/Density_equalizing_maps/Map_report.h>
+
+#include <CGAL/boost/graph/helpers.h>
+#include <CGAL/boost/graph/iterator.h>
+#include <CGAL/boost/graph/named_params_helper.h>
+#include <CGAL/property_map.h>
+
+#include <Eigen/Core>
+
+#include <string>
+#include <vector>
+
+namespace CGAL {
+namespace Density_equalizing_maps {
+namespace internal {
+
+using Matrix = Eigen::MatrixXd;
+using Index_matrix = Eigen::Matrix<int, Eigen::Dynamic, 3>;
+using Vector = Eigen::VectorXd;
+using Complex_vector = Eigen::VectorXcd;
+
+/// A triangle mesh as arrays. `vertices[i]` / `faces[k]` are the descriptors
+/// of row i of `X` / row k of `F`, in the iteration order of the graph.
+template <class TriangleMesh>
+struct Mesh_arrays
+{
+  typedef typename boost::graph_traits<TriangleMesh>::vertex_descriptor vertex_descriptor;
+  typedef typename boost::graph_traits<TriangleMesh>::face_descriptor face_descriptor;
+  Matrix X;
+  Index_matrix F;
+  std::vector<vertex_descriptor> vertices;
+  std::vector<face_descriptor> faces;
+};
+
+/// Extracts positions and triangles. Throws `Invalid_input` if a face is not a
+/// triangle; all other checks are in validation.h.
+template <class TriangleMesh, class VertexPointMap, class VertexIndexMap>
+Mesh_arrays<TriangleMesh> to_arrays(const TriangleMesh& tm, VertexPointMap vpm, VertexIndexMap vim)
+{
+  Mesh_arrays<TriangleMesh> a;
+  const std::size_t nv = static_cast<std::size_t>(num_vertices(tm));
+  const std::size_t nf = static_cast<std::size_t>(num_faces(tm));
+  a.X.resize(nv, 3);
+  a.F.resize(nf, 3);
+  a.vertices.resize(nv);
+  for(auto v : vertices(tm)) {
+    const std::size_t i = static_cast<std::size_t>(get(vim, v));
+    const auto& p = get(vpm, v);
+    a.X(i, 0) = CGAL::to_double(p.x());
+    a.X(i, 1) = CGAL::to_double(p.y());
+    a.X(i, 2) = CGAL::to_double(p.z());
+    a.vertices[i] = v;
+  }
+  a.faces.reserve(nf);
+  std::size_t k = 0;
+  for(auto f : faces(tm)) {
+    int c = 0;
+    for(auto v : vertices_around_face(halfedge(f, tm), tm)) {
+      if(c == 3) break;
+      a.F(k, c++) = static_cast<int>(get(vim, v));
+    }
+    if(c != 3 || degree(f, tm) != 3)
+      throw Invalid_input("not a pure triangle mesh: face " + std::to_string(k) + " has " +
+                          std::to_string(degree(f, tm)) + " vertices");
+    a.faces.push_back(f);
+    ++k;
+  }
+  return a;
+}
+
+/// Writes the rows of `Y` (n x 3) to a vertex property map of points.
+template <class TriangleMesh, class VertexPointOutMap>
+void write_points(const Mesh_arrays<TriangleMesh>& a, const Matrix& Y, VertexPointOutMap out)
+{
+  typedef typename boost::property_traits<VertexPointOutMap>::value_type Point;
+  for(std::size_t i = 0; i < a.vertices.size(); ++i)
+    put(out, a.vertices[i], Point(Y(i, 0), Y(i, 1), Y(i, 2)));
+}
+
+/// Reads a vertex property map of points into an n x 3 matrix.
+template <class TriangleMesh, class VertexPointMap>
+Matrix read_points(const Mesh_arrays<TriangleMesh>& a, VertexPointMap pm)
+{
+  Matrix Y(a.vertices.size(), 3);
+  for(std::size_t i = 0; i < a.vertices.size(); ++i) {
+    const auto& p = get(pm, a.vertices[i]);
+    Y(i, 0) = CGAL::to_double(p.x());
+    Y(i, 1) = CGAL::to_double(p.y());
+    Y(i, 2) = CGAL::to_double(p.z());
+  }
+  return Y;
+}
+
+/// Reads a face property map of scalars into a vector (face order of `a`).
+template <class TriangleMesh, class FaceScalarMap>
+Vector read_face_values(const Mesh_arrays<TriangleMesh>& a, FaceScalarMap fm)
+{
+  Vector v(a.faces.size());
+  for(std::size_t k = 0; k < a.faces.size(); ++k) v[k] = CGAL::to_double(get(fm, a.faces[k]));
+  return v;
+}
+
+/// Reads a vertex property map of scalars into a vector.
+template <class TriangleMesh, class VertexScalarMap>
+Vector read_vertex_values(const Mesh_arrays<TriangleMesh>& a, VertexScalarMap vm)
+{
+  Vector v(a.vertices.size());
+  for(std::size_t i = 0; i < a.vertices.size(); ++i) v[i] = CGAL::to_double(get(vm, a.vertices[i]));
+  return v;
+}
+
+} // namespace internal
+} // namespace Density_equalizing_maps
+} // namespace CGAL
+
+#endif // CGAL_DENSITY_EQUALIZING_MAPS_INTERNAL_MESH_ARRAYS_H

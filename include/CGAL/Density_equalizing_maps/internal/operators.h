@@ -1,0 +1,268 @@
+// Copyright (c) 2026 Density_equalizing_maps contributors.
+// This file is part of Density_equalizing_maps, a third-party CGAL package.
+// SPDX-License-Identifier: GPL-3.0-or-later
+
+#ifndef CGAL_DENSITY_EQUALIZING_MAPS_INTERNAL_OPERATORS_H
+#define CGAL_DENSITY_EQUALIZING_MAPS_INTERNAL_OPERATORS_H
+
+// Discrete P1 operators on triangle meshes (ALGORITHMS.md section 1).
+// Positions are n x 3 (surfaces) or n x 2 (planar charts); triangles m x 3.
+// Angles and areas come from cross and dot products, not Heron's formula, so
+// needles and slivers stay finite.
+
+#include <CGAL/Density_equalizing_maps/internal/mesh_arrays.h>
+
+#include <Eigen/Sparse>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace CGAL {
+namespace Density_equalizing_maps {
+namespace internal {
+
+using Sparse_matrix = Eigen::SparseMatrix<double>;
+using Triplet = Eigen::Triplet<double>;
+
+inline Eigen::Vector3d row3(const Matrix& X, Eigen::Index i)
+{
+  return X.cols() == 3 ? Eigen::Vector3d(X(i, 0), X(i, 1), X(i, 2)) : Eigen::Vector3d(X(i, 0), X(i, 1), 0.);
+}
+
+/// Unnormalized normal (x_j - x_i) x (x_k - x_i) of face k; planar charts get (0,0,2*signed area).
+inline Eigen::Vector3d face_normal(const Matrix& X, const Index_matrix& F, Eigen::Index k)
+{
+  const Eigen::Vector3d a = row3(X, F(k, 0)), b = row3(X, F(k, 1)), c = row3(X, F(k, 2));
+  return (b - a).cross(c - a);
+}
+
+/// Unsigned triangle areas.
+inline Vector face_areas(const Matrix& X, const Index_matrix& F)
+{
+  Vector A(F.rows());
+  for(Eigen::Index k = 0; k < F.rows(); ++k) A[k] = 0.5 * face_normal(X, F, k).norm();
+  return A;
+}
+
+/// Signed areas of a planar chart (counter-clockwise positive).
+inline Vector signed_areas_2(const Matrix& X, const Index_matrix& F)
+{
+  Vector A(F.rows());
+  for(Eigen::Index k = 0; k < F.rows(); ++k) A[k] = 0.5 * face_normal(X, F, k).z();
+  return A;
+}
+
+/// Cotangent of the angle at each corner (m x 3), cot = dot / |cross|.
+inline Matrix corner_cotangents(const Matrix& X, const Index_matrix& F)
+{
+  Matrix C(F.rows(), 3);
+  for(Eigen::Index k = 0; k < F.rows(); ++k) {
+    const double twice_area = face_normal(X, F, k).norm();
+    for(int a = 0; a < 3; ++a) {
+      const Eigen::Vector3d p = row3(X, F(k, a)), q = row3(X, F(k, (a + 1) % 3)), r = row3(X, F(k, (a + 2) % 3));
+      C(k, a) = (q - p).dot(r - p) / twice_area;
+    }
+  }
+  return C;
+}
+
+/// Assembles per-face 3x3 blocks into a sparse n x n matrix whose sparsity
+/// pattern (all mesh edges plus the diagonal) is computed once. Re-assembly
+/// writes straight into the value array, so solvers can keep their symbolic
+/// factorization across iterations.
+class Face_block_assembler
+{
+public:
+  Face_block_assembler() = default;
+  Face_block_assembler(const Index_matrix& F, Eigen::Index n) { build(F, n); }
+
+  void build(const Index_matrix& F, Eigen::Index n)
+  {
+    std::vector<Triplet> t;
+    t.reserve(static_cast<std::size_t>(9 * F.rows() + n));
+    for(Eigen::Index i = 0; i < n; ++i) t.emplace_back(int(i), int(i), 0.);
+    for(Eigen::Index k = 0; k < F.rows(); ++k)
+      for(int a = 0; a < 3; ++a)
+        for(int b = 0; b < 3; ++b) t.emplace_back(F(k, a), F(k, b), 0.);
+    m_pattern.resize(n, n);
+    m_pattern.setFromTriplets(t.begin(), t.end());
+    m_pattern.makeCompressed();
+    m_slot.resize(F.rows(), 9);
+    for(Eigen::Index k = 0; k < F.rows(); ++k)
+      for(int a = 0; a < 3; ++a)
+        for(int b = 0; b < 3; ++b) m_slot(k, 3 * a + b) = slot(F(k, a), F(k, b));
+    m_diag.resize(n);
+    for(Eigen::Index i = 0; i < n; ++i) m_diag[i] = slot(i, i);
+  }
+
+  /// blocks: m x 9, row-major local matrices; diagonal: optional extra n-vector.
+  Sparse_matrix assemble(const Matrix& blocks, const Vector* diagonal = nullptr) const
+  {
+    Sparse_matrix S = m_pattern;
+    double* v = S.valuePtr();
+    std::fill(v, v + S.nonZeros(), 0.);
+    for(Eigen::Index k = 0; k < blocks.rows(); ++k)
+      for(int s = 0; s < 9; ++s) v[m_slot(k, s)] += blocks(k, s);
+    if(diagonal)
+      for(Eigen::Index i = 0; i < diagonal->size(); ++i) v[m_diag[i]] += (*diagonal)[i];
+    return S;
+  }
+
+  Eigen::Index size() const { return m_pattern.rows(); }
+
+private:
+  Eigen::Index slot(Eigen::Index r, Eigen::Index c) const
+  {
+    const int* inner = m_pattern.innerIndexPtr();
+    const int* begin = inner + m_pattern.outerIndexPtr()[c];
+    const int* end = inner + m_pattern.outerIndexPtr()[c + 1];
+    return std::lower_bound(begin, end, int(r)) - inner;
+  }
+  Sparse_matrix m_pattern;
+  Eigen::Matrix<Eigen::Index, Eigen::Dynamic, 9> m_slot;
+  std::vector<Eigen::Index> m_diag;
+};
+
+/// Local cotangent stiffness blocks (m x 9): L_bc -= cot(a)/2, L_bb += cot(a)/2, ...
+inline Matrix cotangent_stiffness_blocks(const Matrix& X, const Index_matrix& F)
+{
+  const Matrix C = corner_cotangents(X, F);
+  Matrix B = Matrix::Zero(F.rows(), 9);
+  for(Eigen::Index k = 0; k < F.rows(); ++k)
+    for(int a = 0; a < 3; ++a) {
+      const int b = (a + 1) % 3, c = (a + 2) % 3;
+      const double w = 0.5 * C(k, a);
+      B(k, 3 * b + c) -= w; B(k, 3 * c + b) -= w;
+      B(k, 3 * b + b) += w; B(k, 3 * c + c) += w;
+    }
+  return B;
+}
+
+/// Cotangent Laplacian L (symmetric positive semidefinite stiffness matrix;
+/// the Laplace-Beltrami operator is -A^{-1} L).
+inline Sparse_matrix cotangent_laplacian(const Matrix& X, const Index_matrix& F)
+{
+  return Face_block_assembler(F, X.rows()).assemble(cotangent_stiffness_blocks(X, F));
+}
+
+/// Uniform graph Laplacian (weight 1 per edge), for the Tutte fallback.
+inline Sparse_matrix graph_laplacian(const Index_matrix& F, Eigen::Index n)
+{
+  std::vector<Triplet> t;
+  for(Eigen::Index k = 0; k < F.rows(); ++k)
+    for(int a = 0; a < 3; ++a) {
+      const int i = F(k, a), j = F(k, (a + 1) % 3);
+      if(i < j) { // each undirected edge once (closed, consistently oriented mesh)
+        t.emplace_back(i, j, -1.); t.emplace_back(j, i, -1.);
+        t.emplace_back(i, i, 1.); t.emplace_back(j, j, 1.);
+      }
+    }
+  Sparse_matrix L(n, n);
+  L.setFromTriplets(t.begin(), t.end());
+  return L;
+}
+
+/// Diagonal of the barycentric lumped mass matrix: A_ii = sum of |T|/3 over T containing i.
+inline Vector lumped_mass(const Matrix& X, const Index_matrix& F)
+{
+  const Vector a = face_areas(X, F);
+  Vector A = Vector::Zero(X.rows());
+  for(Eigen::Index k = 0; k < F.rows(); ++k)
+    for(int c = 0; c < 3; ++c) A[F(k, c)] += a[k] / 3.;
+  return A;
+}
+
+/// Area-weighted face-to-vertex averaging M (n x m, rows sum to 1).
+inline Sparse_matrix face_to_vertex(const Vector& face_area, const Index_matrix& F, Eigen::Index n)
+{
+  Vector total = Vector::Zero(n);
+  for(Eigen::Index k = 0; k < F.rows(); ++k)
+    for(int c = 0; c < 3; ++c) total[F(k, c)] += face_area[k];
+  std::vector<Triplet> t;
+  t.reserve(static_cast<std::size_t>(3 * F.rows()));
+  for(Eigen::Index k = 0; k < F.rows(); ++k)
+    for(int c = 0; c < 3; ++c) t.emplace_back(F(k, c), int(k), face_area[k] / total[F(k, c)]);
+  Sparse_matrix M(n, F.rows());
+  M.setFromTriplets(t.begin(), t.end());
+  return M;
+}
+
+/// Per-face gradient of a P1 function g on a surface (m x 3):
+/// grad g|_T = n_T x (g_i e_i + g_j e_j + g_k e_k) / (2|T|), e_a the edge opposite a.
+inline Matrix face_gradient(const Matrix& X, const Index_matrix& F, const Vector& g)
+{
+  Matrix G(F.rows(), 3);
+  for(Eigen::Index k = 0; k < F.rows(); ++k) {
+    const Eigen::Vector3d N = face_normal(X, F, k);
+    const double twice_area_sq = N.squaredNorm(); // |N| = 2|T|, and n_T = N/|N|
+    Eigen::Vector3d s = Eigen::Vector3d::Zero();
+    for(int a = 0; a < 3; ++a) {
+      const Eigen::Vector3d e = row3(X, F(k, (a + 2) % 3)) - row3(X, F(k, (a + 1) % 3));
+      s += g[F(k, a)] * e;
+    }
+    G.row(k) = N.cross(s) / twice_area_sq;
+  }
+  return G;
+}
+
+/// Per-face gradient on a planar chart (m x 2), valid for either orientation.
+inline Matrix planar_face_gradient(const Matrix& X, const Index_matrix& F, const Vector& g)
+{
+  Matrix G(F.rows(), 2);
+  for(Eigen::Index k = 0; k < F.rows(); ++k) {
+    double gx = 0, gy = 0, twice_signed = 0;
+    for(int a = 0; a < 3; ++a) {
+      const int j = F(k, (a + 1) % 3), l = F(k, (a + 2) % 3);
+      const double ex = X(l, 0) - X(j, 0), ey = X(l, 1) - X(j, 1);
+      gx += -g[F(k, a)] * ey; // J e = (-e_y, e_x)
+      gy += g[F(k, a)] * ex;
+      twice_signed += X(j, 0) * X(l, 1) - X(l, 0) * X(j, 1);
+    }
+    G(k, 0) = gx / twice_signed;
+    G(k, 1) = gy / twice_signed;
+  }
+  return G;
+}
+
+/// Index of the most regular face: argmin of sum |l_a / perimeter - 1/3| (lowest index on ties).
+inline Vector face_irregularity(const Matrix& X, const Index_matrix& F)
+{
+  Vector R(F.rows());
+  for(Eigen::Index k = 0; k < F.rows(); ++k) {
+    double l[3], p = 0;
+    for(int a = 0; a < 3; ++a) { l[a] = (row3(X, F(k, (a + 1) % 3)) - row3(X, F(k, (a + 2) % 3))).norm(); p += l[a]; }
+    R[k] = std::abs(l[0] / p - 1. / 3) + std::abs(l[1] / p - 1. / 3) + std::abs(l[2] / p - 1. / 3);
+  }
+  return R;
+}
+
+inline Eigen::Index most_regular_face(const Matrix& X, const Index_matrix& F)
+{
+  Eigen::Index best;
+  face_irregularity(X, F).minCoeff(&best);
+  return best;
+}
+
+/// SDEM's most regular 1-ring face (paper 001 eqs. 25-28): R_v = sum_{T>v} R_T / 3,
+/// then argmin over faces of the mean of R_v on its corners.
+inline Eigen::Index most_regular_one_ring_face(const Matrix& X, const Index_matrix& F)
+{
+  const Vector R = face_irregularity(X, F);
+  Vector Rv = Vector::Zero(X.rows());
+  for(Eigen::Index k = 0; k < F.rows(); ++k)
+    for(int c = 0; c < 3; ++c) Rv[F(k, c)] += R[k] / 3.;
+  Eigen::Index best = 0;
+  double best_value = std::numeric_limits<double>::infinity();
+  for(Eigen::Index k = 0; k < F.rows(); ++k) {
+    const double v = (Rv[F(k, 0)] + Rv[F(k, 1)] + Rv[F(k, 2)]) / 3.;
+    if(v < best_value) { best_value = v; best = k; }
+  }
+  return best;
+}
+
+} // namespace internal
+} // namespace Density_equalizing_maps
+} // namespace CGAL
+
+#endif // CGAL_DENSITY_EQUALIZING_MAPS_INTERNAL_OPERATORS_H

@@ -1,0 +1,175 @@
+// Copyright (c) 2026 Density_equalizing_maps contributors.
+// This file is part of Density_equalizing_maps, a third-party CGAL package.
+// SPDX-License-Identifier: GPL-3.0-or-later
+
+#ifndef CGAL_DENSITY_EQUALIZING_MAPS_INTERNAL_SPARSE_SOLVER_H
+#define CGAL_DENSITY_EQUALIZING_MAPS_INTERNAL_SPARSE_SOLVER_H
+
+// Every linear system of the package (diffusion, harmonic maps, LBS) is
+// symmetric positive definite after Dirichlet elimination. They go through a
+// CGAL sparse solver traits class (concept SparseLinearAlgebraWithFactorTraits_d).
+// The numerical code sees them through the small type-erased interface below,
+// so it is compiled once whatever traits the user chooses.
+//
+// For `CGAL::Eigen_solver_traits` the Eigen solver is driven directly so that
+// the symbolic analysis is done once per sparsity pattern: the traits' own
+// `factor()` always redoes it (CGAL_CONVENTIONS.md section 4).
+
+#include <CGAL/Density_equalizing_maps/internal/operators.h>
+
+#include <CGAL/Eigen_solver_traits.h>
+#include <CGAL/Eigen_sparse_matrix.h>
+#include <CGAL/Eigen_vector.h>
+
+#include <Eigen/SparseCholesky>
+#ifdef CGAL_DEM_USE_CHOLMOD
+#include <Eigen/CholmodSupport>
+#endif
+
+#include <memory>
+#include <type_traits>
+
+namespace CGAL {
+namespace Density_equalizing_maps {
+
+/// \ingroup PkgDensityEqualizingMapsRef
+/// The default sparse solver traits: a supernodal Cholesky factorization
+/// (SuiteSparse CHOLMOD through Eigen) when the package is built with
+/// `CGAL_DEM_USE_CHOLMOD`, otherwise Eigen's `SimplicialLDLT`.
+#ifdef CGAL_DEM_USE_CHOLMOD
+typedef CGAL::Eigen_solver_traits<Eigen::CholmodSupernodalLLT<CGAL::Eigen_sparse_matrix<double>::EigenType> >
+  Default_sparse_solver_traits;
+#else
+typedef CGAL::Eigen_solver_traits<Eigen::SimplicialLDLT<CGAL::Eigen_sparse_matrix<double>::EigenType> >
+  Default_sparse_solver_traits;
+#endif
+
+namespace internal {
+
+/// Factor once, solve many right-hand sides.
+class Spd_solver
+{
+public:
+  virtual ~Spd_solver() = default;
+  /// Factorizes `A` (kept by reference until the next call). Returns false on failure.
+  virtual bool factor(const Sparse_matrix& A) = 0;
+  /// Solves for every column of B.
+  virtual bool solve(const Matrix& B, Matrix& X) = 0;
+  /// A fresh solver of the same kind (each system keeps its own factorization).
+  virtual std::unique_ptr<Spd_solver> clone() const = 0;
+};
+
+template <class T> struct Is_eigen_solver_traits : std::false_type {};
+template <class S> struct Is_eigen_solver_traits<CGAL::Eigen_solver_traits<S> > : std::true_type {};
+
+/// Adapter for `CGAL::Eigen_solver_traits`: reuses the symbolic analysis while
+/// the sparsity pattern of the matrix does not change.
+template <class Traits>
+class Eigen_traits_spd_solver : public Spd_solver
+{
+public:
+  explicit Eigen_traits_spd_solver(const Traits& t = Traits()) : m_traits(t) {}
+  bool factor(const Sparse_matrix& A) override
+  {
+    auto& s = m_traits.solver();
+    const bool same_pattern = m_analyzed && A.rows() == m_rows && A.nonZeros() == m_nnz &&
+                              std::equal(A.outerIndexPtr(), A.outerIndexPtr() + A.outerSize() + 1, m_outer.begin()) &&
+                              std::equal(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros(), m_inner.begin());
+    if(!same_pattern) {
+      s.analyzePattern(A);
+      m_rows = A.rows(); m_nnz = A.nonZeros();
+      m_outer.assign(A.outerIndexPtr(), A.outerIndexPtr() + A.outerSize() + 1);
+      m_inner.assign(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros());
+      m_analyzed = true;
+    }
+    s.factorize(A);
+    return s.info() == Eigen::Success;
+  }
+  bool solve(const Matrix& B, Matrix& X) override
+  {
+    X = m_traits.solver().solve(B);
+    return m_traits.solver().info() == Eigen::Success && X.allFinite();
+  }
+  std::unique_ptr<Spd_solver> clone() const override
+  { return std::unique_ptr<Spd_solver>(new Eigen_traits_spd_solver<Traits>(Traits())); }
+
+private:
+  Traits m_traits;
+  bool m_analyzed = false;
+  Eigen::Index m_rows = 0, m_nnz = 0;
+  std::vector<int> m_outer, m_inner;
+};
+
+/// Adapter for any other model of `SparseLinearAlgebraWithFactorTraits_d`.
+template <class Traits>
+class Generic_traits_spd_solver : public Spd_solver
+{
+  typedef typename Traits::Matrix TMatrix;
+  typedef typename Traits::Vector TVector;
+  typedef typename Traits::NT NT;
+public:
+  explicit Generic_traits_spd_solver(const Traits& t = Traits()) : m_traits(t) {}
+  bool factor(const Sparse_matrix& A) override
+  {
+    m_matrix.reset(new TMatrix(static_cast<std::size_t>(A.rows())));
+    for(int c = 0; c < A.outerSize(); ++c)
+      for(Sparse_matrix::InnerIterator it(A, c); it; ++it) m_matrix->set_coef(it.row(), it.col(), it.value(), true);
+    NT D;
+    return m_traits.factor(*m_matrix, D);
+  }
+  bool solve(const Matrix& B, Matrix& X) override
+  {
+    X.resize(B.rows(), B.cols());
+    for(Eigen::Index c = 0; c < B.cols(); ++c) {
+      TVector b(B.rows()), x(B.rows());
+      for(Eigen::Index i = 0; i < B.rows(); ++i) b.set(i, B(i, c));
+      if(!m_traits.linear_solver(b, x)) return false;
+      for(Eigen::Index i = 0; i < B.rows(); ++i) X(i, c) = x(i);
+    }
+    return X.allFinite();
+  }
+  std::unique_ptr<Spd_solver> clone() const override
+  { return std::unique_ptr<Spd_solver>(new Generic_traits_spd_solver<Traits>(Traits())); }
+
+private:
+  Traits m_traits;
+  std::unique_ptr<TMatrix> m_matrix;
+};
+
+template <class Traits>
+std::unique_ptr<Spd_solver> make_spd_solver(const Traits& t)
+{
+  if constexpr(Is_eigen_solver_traits<Traits>::value)
+    return std::unique_ptr<Spd_solver>(new Eigen_traits_spd_solver<Traits>(t));
+  else
+    return std::unique_ptr<Spd_solver>(new Generic_traits_spd_solver<Traits>(t));
+}
+
+inline std::unique_ptr<Spd_solver> make_default_spd_solver()
+{ return make_spd_solver(Default_sparse_solver_traits()); }
+
+/// Dirichlet conditions by symmetric elimination that keeps the sparsity
+/// pattern: for a fixed j, rhs_i -= K_ij w_j for every free i, then row and
+/// column j become the identity and rhs_j = w_j. The reduced matrix is SPD
+/// whenever K restricted to the free vertices is.
+inline void apply_dirichlet(Sparse_matrix& K, Matrix& rhs, const std::vector<char>& is_fixed, const Matrix& fixed_values)
+{
+  double* v = K.valuePtr();
+  const int* inner = K.innerIndexPtr();
+  const int* outer = K.outerIndexPtr();
+  for(int c = 0; c < K.outerSize(); ++c)
+    for(int p = outer[c]; p < outer[c + 1]; ++p) {
+      const int r = inner[p];
+      if(!is_fixed[c] && !is_fixed[r]) continue;
+      if(is_fixed[c] && !is_fixed[r]) rhs.row(r) -= v[p] * fixed_values.row(c);
+      v[p] = (r == c) ? 1. : 0.;
+    }
+  for(Eigen::Index i = 0; i < rhs.rows(); ++i)
+    if(is_fixed[i]) rhs.row(i) = fixed_values.row(i);
+}
+
+} // namespace internal
+} // namespace Density_equalizing_maps
+} // namespace CGAL
+
+#endif // CGAL_DENSITY_EQUALIZING_MAPS_INTERNAL_SPARSE_SOLVER_H

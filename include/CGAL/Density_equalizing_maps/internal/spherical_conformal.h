@@ -1,0 +1,234 @@
+// Copyright (c) 2026 Density_equalizing_maps contributors.
+// This file is part of Density_equalizing_maps, a third-party CGAL package.
+// SPDX-License-Identifier: GPL-3.0-or-later
+
+#ifndef CGAL_DENSITY_EQUALIZING_MAPS_INTERNAL_SPHERICAL_CONFORMAL_H
+#define CGAL_DENSITY_EQUALIZING_MAPS_INTERNAL_SPHERICAL_CONFORMAL_H
+
+// FLASH-style spherical conformal map (ALGORITHMS.md section 3) and the
+// Moebius area correction (section 4), on index arrays.
+
+#include <CGAL/Density_equalizing_maps/internal/beltrami.h>
+#include <CGAL/Density_equalizing_maps/internal/fold_overs.h>
+#include <CGAL/Density_equalizing_maps/internal/projections.h>
+
+#include <algorithm>
+#include <numeric>
+
+namespace CGAL {
+namespace Density_equalizing_maps {
+namespace internal {
+
+struct Flash_result
+{
+  Matrix S;                 // n x 3, on the unit sphere
+  Complex_vector south_w;   // the south-chart coordinates after the LBS step (S = (P^S)^{-1}(w))
+  Eigen::Index north_face = 0;
+  bool tutte = false;
+};
+
+/// Harmonic map of the mesh punctured at face `t` onto the plane: the three
+/// corners of `t` are pinned (big-triangle boundary), the rest solves L z = 0.
+inline bool punctured_harmonic_map(const Sparse_matrix& L_in, const Index_matrix& F, Eigen::Index t,
+                                   const Complex corners[3], Spd_solver& solver, Complex_vector& z)
+{
+  const Eigen::Index n = L_in.rows();
+  Sparse_matrix L = L_in;
+  std::vector<char> fixed(static_cast<std::size_t>(n), 0);
+  Matrix values = Matrix::Zero(n, 2), rhs = Matrix::Zero(n, 2), sol;
+  for(int a = 0; a < 3; ++a) {
+    fixed[F(t, a)] = 1;
+    values(F(t, a), 0) = corners[a].real();
+    values(F(t, a), 1) = corners[a].imag();
+  }
+  apply_dirichlet(L, rhs, fixed, values);
+  if(!solver.factor(L) || !solver.solve(rhs, sol)) return false;
+  z.resize(n);
+  for(Eigen::Index i = 0; i < n; ++i) z[i] = Complex(sol(i, 0), sol(i, 1));
+  return z.allFinite();
+}
+
+inline double mean_side(const Complex a, const Complex b, const Complex c)
+{
+  return (std::abs(a - b) + std::abs(b - c) + std::abs(c - a)) / 3.;
+}
+
+/// FLASH: north-pole harmonic step, balancing, south-pole LBS correction.
+/// Falls back to a Tutte embedding when the cotangent harmonic map fails.
+inline Flash_result flash_spherical_map(const Matrix& X, const Index_matrix& F, const Spd_solver& prototype)
+{
+  const Eigen::Index n = X.rows();
+  Flash_result res;
+  const Eigen::Index t = most_regular_face(X, F);
+  res.north_face = t;
+  const Eigen::Vector3d a = row3(X, F(t, 1)) - row3(X, F(t, 0)), b = row3(X, F(t, 2)) - row3(X, F(t, 0));
+  // the 3D triangle scaled to a unit base, with the signed real part
+  const Complex cot_corners[3] = {Complex(0, 0), Complex(1, 0),
+                                  Complex(a.dot(b), a.cross(b).norm()) / a.squaredNorm()};
+  std::unique_ptr<Spd_solver> solver = prototype.clone();
+  Complex_vector z;
+  bool ok = punctured_harmonic_map(cotangent_laplacian(X, F), F, t, cot_corners, *solver, z);
+  Matrix S;
+  auto balance_and_lift = [&](Complex_vector& zz) {
+    zz.array() -= zz.mean();
+    // south triangle: smallest sum of |z| over the corners, t excluded
+    Eigen::Index ts = -1;
+    double best = std::numeric_limits<double>::infinity();
+    for(Eigen::Index k = 0; k < F.rows(); ++k) {
+      if(k == t) continue;
+      const double s = std::abs(zz[F(k, 0)]) + std::abs(zz[F(k, 1)]) + std::abs(zz[F(k, 2)]);
+      if(s < best) { best = s; ts = k; }
+    }
+    auto inv = [](Complex w) { return 1. / std::conj(w); };
+    const double lN = mean_side(zz[F(t, 0)], zz[F(t, 1)], zz[F(t, 2)]);
+    const double lS = mean_side(inv(zz[F(ts, 0)]), inv(zz[F(ts, 1)]), inv(zz[F(ts, 2)]));
+    if(std::isfinite(lS) && lS > 0 && lN > 0) zz *= std::sqrt(lS / lN);
+    S = inverse_north_chart(zz);
+    return S.allFinite();
+  };
+  if(!ok || !balance_and_lift(z)) {
+    res.tutte = true;
+    const Complex tutte_corners[3] = {Complex(1, 0), std::polar(1., 2 * M_PI / 3), std::polar(1., 4 * M_PI / 3)};
+    std::unique_ptr<Spd_solver> s2 = prototype.clone();
+    if(!punctured_harmonic_map(graph_laplacian(F, n), F, t, tutte_corners, *s2, z) || !balance_and_lift(z))
+      throw Invalid_input("the harmonic and Tutte maps both failed: the mesh is not a valid genus-0 surface");
+  }
+
+  // South step: quasi-conformal correction in the south chart, where the
+  // north step's distortion (near the puncture) sits at the centre.
+  std::vector<Eigen::Index> order(static_cast<std::size_t>(n));
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](Eigen::Index i, Eigen::Index j) { return S(i, 2) < S(j, 2); });
+  Complex_vector p(n);
+  for(Eigen::Index i = 0; i < n; ++i) p[i] = south_stereographic(row_vector3(S, i));
+  const Matrix P = to_planar(p);
+  const Complex_vector mu = metric_beltrami_coefficient(P, X, F);
+  // faces straddling the south pole are inverted in this chart: pin them
+  const std::vector<int> orient = planar_orientations(P, F);
+  long balance = 0;
+  for(int o : orient) balance += o;
+  const int majority = balance >= 0 ? 1 : -1;
+
+  Eigen::Index m = std::max<Eigen::Index>(static_cast<Eigen::Index>(std::llround(n / 10.)), 3);
+  Matrix w;
+  bool solved = false;
+  for(int attempt = 0; attempt < 2 && !solved; ++attempt, m = std::min(n, 5 * m)) {
+    std::vector<char> fixed(static_cast<std::size_t>(n), 0);
+    for(Eigen::Index i = 0; i < m; ++i) fixed[order[i]] = 1;
+    for(Eigen::Index k = 0; k < F.rows(); ++k)
+      if(orient[k] != majority)
+        for(int c = 0; c < 3; ++c) fixed[F(k, c)] = 1;
+    std::unique_ptr<Spd_solver> s3 = prototype.clone();
+    solved = linear_beltrami_solve(P, F, mu, fixed, P, *s3, w);
+  }
+  if(!solved) w = P;
+  res.south_w = to_complex(w);
+  res.S = inverse_south_chart(res.south_w);
+  return res;
+}
+
+/// Moebius map f(z) = e^s (z - w0) / (1 + conj(w0) z): a rotation of the
+/// sphere taking w0 to the south pole followed by a dilation. Up to a final
+/// rotation (which does not change areas) every Moebius map is of this form.
+inline Complex mobius_rotation_dilation(Complex z, Complex w0, double s)
+{
+  if(!std::isfinite(z.real()) || !std::isfinite(z.imag()))
+    return std::norm(w0) == 0 ? z : std::exp(s) / std::conj(w0);
+  return std::exp(s) * (z - w0) / (1. + std::conj(w0) * z);
+}
+
+/// mean |log(normalized image area / normalized input area)| over faces with finite values.
+inline double mean_abs_log_area_ratio(const Vector& source_area, const Vector& image_area)
+{
+  const double ss = source_area.sum(), si = image_area.sum();
+  double sum = 0;
+  Eigen::Index count = 0;
+  for(Eigen::Index k = 0; k < source_area.size(); ++k) {
+    const double d = std::log((image_area[k] / si) / (source_area[k] / ss));
+    if(std::isfinite(d)) { sum += std::abs(d); ++count; }
+  }
+  return count ? sum / count : std::numeric_limits<double>::infinity();
+}
+
+/// Nelder-Mead minimization in R^3 (the objective is non-smooth).
+template <class Objective>
+Eigen::Vector3d nelder_mead_3(Objective f, Eigen::Vector3d x0, const Eigen::Vector3d& step, int max_evaluations,
+                              double tolerance)
+{
+  std::array<Eigen::Vector3d, 4> x;
+  std::array<double, 4> v;
+  x[0] = x0;
+  for(int i = 0; i < 3; ++i) { x[i + 1] = x0; x[i + 1][i] += step[i]; }
+  int evals = 0;
+  for(int i = 0; i < 4; ++i) { v[i] = f(x[i]); ++evals; }
+  while(evals < max_evaluations) {
+    std::array<int, 4> idx = {0, 1, 2, 3};
+    std::sort(idx.begin(), idx.end(), [&](int a, int b) { return v[a] < v[b]; });
+    std::array<Eigen::Vector3d, 4> xs; std::array<double, 4> vs;
+    for(int i = 0; i < 4; ++i) { xs[i] = x[idx[i]]; vs[i] = v[idx[i]]; }
+    x = xs; v = vs;
+    if(std::abs(v[3] - v[0]) <= tolerance * (std::abs(v[0]) + 1e-30) &&
+       (x[3] - x[0]).norm() <= 1e-8)
+      break;
+    const Eigen::Vector3d c = (x[0] + x[1] + x[2]) / 3.;
+    const Eigen::Vector3d xr = c + (c - x[3]);
+    const double vr = f(xr); ++evals;
+    if(vr < v[0]) {
+      const Eigen::Vector3d xe = c + 2. * (c - x[3]);
+      const double ve = f(xe); ++evals;
+      if(ve < vr) { x[3] = xe; v[3] = ve; } else { x[3] = xr; v[3] = vr; }
+    } else if(vr < v[2]) {
+      x[3] = xr; v[3] = vr;
+    } else {
+      const bool outside = vr < v[3];
+      const Eigen::Vector3d xc = outside ? Eigen::Vector3d(c + 0.5 * (xr - c)) : Eigen::Vector3d(c + 0.5 * (x[3] - c));
+      const double vc = f(xc); ++evals;
+      if(vc < (outside ? vr : v[3])) { x[3] = xc; v[3] = vc; }
+      else {
+        for(int i = 1; i < 4; ++i) { x[i] = x[0] + 0.5 * (x[i] - x[0]); v[i] = f(x[i]); ++evals; }
+      }
+    }
+  }
+  int best = 0;
+  for(int i = 1; i < 4; ++i) if(v[i] < v[best]) best = i;
+  return x[best];
+}
+
+/// Moebius area correction: the Moebius transformation of the spherical map S
+/// minimizing the mean |log area ratio| against the input X. Returns the corrected map.
+inline Matrix mobius_area_correction(const Matrix& X, const Index_matrix& F, const Matrix& S,
+                                     double* objective_before = nullptr, double* objective_after = nullptr)
+{
+  const Vector source_area = face_areas(X, F);
+  const Complex_vector z = north_chart(S);
+  Matrix q(S.rows(), 3);
+  auto apply = [&](const Eigen::Vector3d& xi) {
+    const Complex w0(xi[0], xi[1]);
+    for(Eigen::Index i = 0; i < z.size(); ++i)
+      q.row(i) = inverse_north_stereographic(mobius_rotation_dilation(z[i], w0, xi[2])).transpose();
+  };
+  auto objective = [&](const Eigen::Vector3d& xi) {
+    if(xi.head<2>().norm() > 1e3 || std::abs(xi[2]) > 50) return std::numeric_limits<double>::infinity();
+    apply(xi);
+    return mean_abs_log_area_ratio(source_area, face_areas(q, F));
+  };
+  const double before = objective(Eigen::Vector3d::Zero());
+  Eigen::Vector3d best = nelder_mead_3(objective, Eigen::Vector3d::Zero(), Eigen::Vector3d(0.2, 0.2, 0.5), 600, 1e-10);
+  // a restart from the optimum escapes an early collapse of the simplex
+  best = nelder_mead_3(objective, best, Eigen::Vector3d(0.05, 0.05, 0.1), 300, 1e-10);
+  const double after = objective(best);
+  if(objective_before) *objective_before = before;
+  if(!(after <= before)) { // never make it worse
+    if(objective_after) *objective_after = before;
+    return S;
+  }
+  if(objective_after) *objective_after = after;
+  apply(best);
+  return q;
+}
+
+} // namespace internal
+} // namespace Density_equalizing_maps
+} // namespace CGAL
+
+#endif // CGAL_DENSITY_EQUALIZING_MAPS_INTERNAL_SPHERICAL_CONFORMAL_H

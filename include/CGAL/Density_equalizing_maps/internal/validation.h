@@ -1,0 +1,173 @@
+// Copyright (c) 2026 Density_equalizing_maps contributors.
+// This file is part of Density_equalizing_maps, a third-party CGAL package.
+// SPDX-License-Identifier: GPL-3.0-or-later
+
+#ifndef CGAL_DENSITY_EQUALIZING_MAPS_INTERNAL_VALIDATION_H
+#define CGAL_DENSITY_EQUALIZING_MAPS_INTERNAL_VALIDATION_H
+
+// Input checks shared by every method. They work on the index arrays so that
+// the command-line tool can run them on a polygon soup before a halfedge
+// structure exists (a non-manifold edge cannot even be stored in one).
+
+#include <CGAL/Density_equalizing_maps/Map_report.h>
+#include <CGAL/Density_equalizing_maps/internal/mesh_arrays.h>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+namespace CGAL {
+namespace Density_equalizing_maps {
+namespace internal {
+
+inline std::string face_name(Eigen::Index k) { return "face " + std::to_string(k); }
+inline std::string vertex_name(Eigen::Index i) { return "vertex " + std::to_string(i); }
+
+/// Topological facts of a closed, oriented, manifold triangle mesh.
+struct Mesh_topology
+{
+  std::size_t edges = 0;
+  long euler_characteristic = 0;
+  long genus() const { return (2 - euler_characteristic) / 2; }
+};
+
+/// Checks everything a closed surface method needs and returns the topology.
+/// `expected_euler` is 2 for genus 0, 0 for genus 1. Throws `Invalid_input`.
+inline Mesh_topology validate_closed_surface(const Matrix& X, const Index_matrix& F,
+                                             long expected_euler, Eigen::Index min_vertices)
+{
+  const Eigen::Index nv = X.rows(), nf = F.rows();
+  if(nv < min_vertices)
+    throw Invalid_input("too few vertices: the mesh has " + std::to_string(nv) +
+                        ", at least " + std::to_string(min_vertices) + " are needed");
+  if(nf == 0) throw Invalid_input("the mesh has no faces");
+  for(Eigen::Index i = 0; i < nv; ++i)
+    for(int c = 0; c < 3; ++c)
+      if(!std::isfinite(X(i, c)))
+        throw Invalid_input("non-finite coordinates at " + vertex_name(i));
+  for(Eigen::Index k = 0; k < nf; ++k)
+    for(int c = 0; c < 3; ++c)
+      if(F(k, c) < 0 || F(k, c) >= nv)
+        throw Invalid_input(face_name(k) + " refers to vertex " + std::to_string(F(k, c)) +
+                            ", out of range");
+
+  // Every directed edge must occur once and its reverse once: anything else is
+  // a boundary, a non-manifold edge or inconsistent orientation.
+  std::unordered_map<long long, int> directed; // key -> count
+  directed.reserve(static_cast<std::size_t>(3 * nf));
+  auto key = [nv](long long i, long long j) { return i * nv + j; };
+  for(Eigen::Index k = 0; k < nf; ++k)
+    for(int c = 0; c < 3; ++c) {
+      const int i = F(k, c), j = F(k, (c + 1) % 3);
+      if(i == j) throw Invalid_input("degenerate " + face_name(k) + ": repeated vertex " + std::to_string(i));
+      if(++directed[key(i, j)] > 1) {
+        if(directed.count(key(j, i)) && directed[key(j, i)] >= 1)
+          throw Invalid_input("non-manifold edge (" + std::to_string(i) + ", " + std::to_string(j) +
+                              ") shared by more than two faces (at " + face_name(k) + ")");
+        throw Invalid_input("inconsistent face orientation or non-manifold edge (" + std::to_string(i) +
+                            ", " + std::to_string(j) + ") at " + face_name(k));
+      }
+    }
+  for(Eigen::Index k = 0; k < nf; ++k)
+    for(int c = 0; c < 3; ++c) {
+      const int i = F(k, c), j = F(k, (c + 1) % 3);
+      auto it = directed.find(key(j, i));
+      if(it == directed.end())
+        throw Invalid_input("open boundary: edge (" + std::to_string(i) + ", " + std::to_string(j) + ") of " +
+                            face_name(k) + " has no opposite face; the mesh must be closed");
+    }
+
+  // Non-manifold vertices: the faces around a vertex must form one fan.
+  std::vector<int> incident(static_cast<std::size_t>(nv), 0);
+  std::unordered_map<long long, Eigen::Index> face_of_edge; // directed edge -> face
+  face_of_edge.reserve(directed.size());
+  for(Eigen::Index k = 0; k < nf; ++k)
+    for(int c = 0; c < 3; ++c) {
+      ++incident[F(k, c)];
+      face_of_edge[key(F(k, c), F(k, (c + 1) % 3))] = k;
+    }
+  std::vector<char> visited(static_cast<std::size_t>(nv), 0);
+  for(Eigen::Index k = 0; k < nf; ++k)
+    for(int c = 0; c < 3; ++c) {
+      const int v = F(k, c);
+      if(visited[v]) continue;
+      visited[v] = 1;
+      // walk the fan: from face (v, a, b) go to the face containing edge (v, b)
+      int count = 0;
+      Eigen::Index f = k;
+      int a = F(k, (c + 1) % 3);
+      do {
+        ++count;
+        int cv = 0;
+        while(F(f, cv) != v) ++cv;
+        const int b = F(f, (cv + 2) % 3);
+        f = face_of_edge[key(v, b)];
+        a = b;
+      } while(f != k && count <= incident[v]);
+      (void)a;
+      if(count != incident[v])
+        throw Invalid_input("non-manifold " + vertex_name(v) + ": its faces form more than one fan");
+    }
+  for(Eigen::Index i = 0; i < nv; ++i)
+    if(incident[i] == 0) throw Invalid_input("isolated " + vertex_name(i) + " belongs to no face");
+
+  // Connectivity (faces through shared edges).
+  {
+    std::vector<char> seen(static_cast<std::size_t>(nf), 0);
+    std::vector<Eigen::Index> stack{0};
+    seen[0] = 1;
+    Eigen::Index reached = 1;
+    while(!stack.empty()) {
+      Eigen::Index f = stack.back(); stack.pop_back();
+      for(int c = 0; c < 3; ++c) {
+        Eigen::Index g = face_of_edge[key(F(f, (c + 1) % 3), F(f, c))];
+        if(!seen[g]) { seen[g] = 1; ++reached; stack.push_back(g); }
+      }
+    }
+    if(reached != nf)
+      throw Invalid_input("the mesh is not connected (" + std::to_string(nf - reached) +
+                          " faces are not reachable from face 0)");
+  }
+
+  Mesh_topology t;
+  t.edges = directed.size() / 2;
+  t.euler_characteristic = static_cast<long>(nv) - static_cast<long>(t.edges) + static_cast<long>(nf);
+  if(t.euler_characteristic != expected_euler) {
+    const long g = (2 - t.euler_characteristic) / 2;
+    throw Invalid_input("wrong topology: Euler characteristic " + std::to_string(t.euler_characteristic) +
+                        " (genus " + std::to_string(g) + "), this method needs genus " +
+                        std::to_string((2 - expected_euler) / 2));
+  }
+
+  // Degenerate faces, decided exactly (thin slivers are valid input).
+  typedef CGAL::Exact_predicates_inexact_constructions_kernel Epick;
+  std::vector<Epick::Point_3> P;
+  P.reserve(static_cast<std::size_t>(nv));
+  for(Eigen::Index i = 0; i < nv; ++i) P.emplace_back(X(i, 0), X(i, 1), X(i, 2));
+  for(Eigen::Index k = 0; k < nf; ++k)
+    if(CGAL::collinear(P[F(k, 0)], P[F(k, 1)], P[F(k, 2)]))
+      throw Invalid_input("degenerate " + face_name(k) + ": its corners are collinear (zero area)");
+  return t;
+}
+
+/// Checks a per-face population: right length, finite and positive.
+inline void validate_population(const Vector& p, Eigen::Index nf, const char* what = "population")
+{
+  if(p.size() != nf)
+    throw Invalid_input(std::string(what) + " has " + std::to_string(p.size()) + " values, the mesh has " +
+                        std::to_string(nf) + " faces");
+  for(Eigen::Index k = 0; k < nf; ++k)
+    if(!std::isfinite(p[k]) || !(p[k] > 0))
+      throw Invalid_input(std::string("non-positive or non-finite ") + what + " at " + face_name(k) +
+                          " (value " + std::to_string(p[k]) + ")");
+}
+
+} // namespace internal
+} // namespace Density_equalizing_maps
+} // namespace CGAL
+
+#endif // CGAL_DENSITY_EQUALIZING_MAPS_INTERNAL_VALIDATION_H
