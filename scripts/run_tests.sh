@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# "Command two": installs missing dependencies, builds (Release) and runs the
+# whole test suite. Tests needing ../shared/data are reported as skipped when
+# that folder is absent.
+set -euo pipefail
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+BUILD_DIR="${DEM_BUILD_DIR:-$ROOT/build}"
+export DEM_BUILD_DIR="$BUILD_DIR"
+
+start=$(date +%s)
+bash "$ROOT/scripts/setup.sh"
+built=$(date +%s)
+echo "run_tests: setup + build took $((built - start)) s"
+
+# Two tests at a time: each test is single-threaded, and the suite is sized
+# for 2 cores.
+ctest --test-dir "$BUILD_DIR" --output-on-failure -j"${DEM_TEST_JOBS:-2}"
+echo "run_tests: ctest took $(( $(date +%s) - built )) s"
