@@ -50,8 +50,10 @@ inline Complex beltrami_from_derivatives(Complex wx, Complex wy)
 {
   const Complex I(0, 1);
   const Complex wz = 0.5 * (wx - I * wy), wzbar = 0.5 * (wx + I * wy);
-  if(wz == Complex(0, 0)) return Complex(1, 0); // degenerate image
-  const Complex mu = wzbar / wz;
+  const double n = std::norm(wz);
+  if(n == 0) return Complex(1, 0); // degenerate image
+  const Complex p = wzbar * std::conj(wz);
+  const Complex mu(p.real() / n, p.imag() / n); // avoids the slow generic complex division
   return std::isfinite(mu.real()) && std::isfinite(mu.imag()) ? mu : Complex(1, 0);
 }
 

@@ -213,9 +213,9 @@ inline Matrix mobius_area_correction(const Matrix& X, const Index_matrix& F, con
     return mean_abs_log_area_ratio(source_area, face_areas(q, F));
   };
   const double before = objective(Eigen::Vector3d::Zero());
-  Eigen::Vector3d best = nelder_mead_3(objective, Eigen::Vector3d::Zero(), Eigen::Vector3d(0.2, 0.2, 0.5), 600, 1e-10);
+  Eigen::Vector3d best = nelder_mead_3(objective, Eigen::Vector3d::Zero(), Eigen::Vector3d(0.2, 0.2, 0.5), 400, 1e-8);
   // a restart from the optimum escapes an early collapse of the simplex
-  best = nelder_mead_3(objective, best, Eigen::Vector3d(0.05, 0.05, 0.1), 300, 1e-10);
+  best = nelder_mead_3(objective, best, Eigen::Vector3d(0.05, 0.05, 0.1), 150, 1e-8);
   const double after = objective(best);
   if(objective_before) *objective_before = before;
   if(!(after <= before)) { // never make it worse

@@ -1,0 +1,159 @@
+// Copyright (c) 2026 Density_equalizing_maps contributors.
+// This file is part of Density_equalizing_maps, a third-party CGAL package.
+// SPDX-License-Identifier: GPL-3.0-or-later
+
+#ifndef CGAL_DENSITY_EQUALIZING_MAPS_INTERNAL_DENSITY_ENGINE_H
+#define CGAL_DENSITY_EQUALIZING_MAPS_INTERNAL_DENSITY_ENGINE_H
+
+// The one density-equalizing loop (papers 000, 001, 002): diffuse the density
+// one implicit step, move the vertices with v = -grad(rho)/rho, keep them on the
+// domain, repair fold-overs, re-couple the density to the new areas.
+//
+// What differs between the sphere, the ellipsoid and the flat torus is the
+// *domain* policy (see sphere_domain.h for the reference model):
+//   Eigen::Index dimension() const;
+//   const Index_matrix& faces() const;
+//   const Face_block_assembler& assembler() const;
+//   Vector mass(const Matrix& x) const;
+//   Matrix stiffness_blocks(const Matrix& x) const;
+//   Sparse_matrix face_to_vertex(const Matrix& x) const;
+//   Matrix face_gradient(const Matrix& x, const Vector& g) const;
+//   Vector density_area(const Matrix& x) const;
+//   Matrix tangent_part(const Matrix& x, const Matrix& v) const;
+//   bool advance(const Matrix& x, const Matrix& d, double dt, Matrix& x_new, Step_statistics&);
+//   std::size_t fold_overs(const Matrix& x) const;
+// What differs between SDEM, LSDEM and EDEQ (extra energy terms, rotations,
+// radius search, stopping quantity) is the *flow* policy; Density_flow below
+// is plain density equalization.
+
+#include <CGAL/Density_equalizing_maps/Map_report.h>
+#include <CGAL/Density_equalizing_maps/internal/measures.h>
+#include <CGAL/Density_equalizing_maps/internal/sparse_solver.h>
+
+#include <functional>
+#include <string>
+
+namespace CGAL {
+namespace Density_equalizing_maps {
+namespace internal {
+
+struct Step_statistics
+{
+  std::size_t repairs = 0;
+  std::size_t halvings = 0;
+};
+
+struct Engine_options
+{
+  double time_step = 0.1;
+  double tolerance = 1e-3;
+  std::size_t max_iterations = 200;
+  /// stop on sd/mean of the re-coupled density (paper 002) instead of the
+  /// diffused one (the reference code of papers 000/001)
+  bool stop_on_recoupled_density = false;
+  std::function<bool(std::size_t, double)> progress;
+};
+
+struct Engine_result
+{
+  Termination termination = Termination::MAXIMUM_ITERATIONS;
+  std::size_t iterations = 0;
+  double initial_error = 0, final_error = 0;
+  Step_statistics steps;
+  std::string message;
+};
+
+/// The per-iteration quantities a flow may use.
+struct Flow_state
+{
+  const Matrix& x;
+  const Vector& mass;
+  const Sparse_matrix& stiffness; // cotangent Laplacian L on x
+  const Vector& diffused_density;
+};
+
+/// Plain density equalization: direction = tangential part of -grad(rho)/rho.
+struct Density_flow
+{
+  void before_step(Matrix&) {}
+  void direction(const Flow_state&, Matrix&) {}
+  /// the stopping quantity, given the default one (sd/mean of the density)
+  double stop_measure(const Matrix&, const Matrix&, double density_error) { return density_error; }
+  template <class Domain>
+  void after_step(std::size_t, Matrix&, Domain&) {}
+};
+
+/// Runs the loop on `x` (the initial map on the domain; on return the last
+/// accepted, fold-over-free map).
+template <class Domain, class Flow>
+Engine_result run_density_equalization(Domain& domain, Flow& flow, Matrix& x, const Vector& population,
+                                       const Engine_options& opt, Spd_solver& solver)
+{
+  const Index_matrix& F = domain.faces();
+  const Eigen::Index n = x.rows();
+  Engine_result res;
+
+  // M is needed for the re-coupled density and, on the same map, for the
+  // next velocity: compute it once per accepted map. (Flows' before_step
+  // hooks are isometries of the domain, which leave M unchanged.)
+  Sparse_matrix M = domain.face_to_vertex(x);
+  Vector rho = densities(population, domain.density_area(x), M).vertex;
+  res.initial_error = relative_sd(rho);
+  double error = res.initial_error;
+  res.final_error = error;
+  if(error < opt.tolerance) { res.termination = Termination::CONVERGED; return res; }
+
+  const double dt = opt.time_step;
+  Matrix x_new;
+  while(true) {
+    if(res.iterations >= opt.max_iterations) { res.termination = Termination::MAXIMUM_ITERATIONS; break; }
+    const Matrix x_previous = x;
+    flow.before_step(x);
+
+    // implicit diffusion step (A + dt L) rho+ = A rho on the fixed pattern
+    const Vector A = domain.mass(x);
+    const Matrix blocks = domain.stiffness_blocks(x);
+    const Sparse_matrix K = domain.assembler().assemble(dt * blocks, &A);
+    Matrix rhs = A.cwiseProduct(rho), rho_plus_m;
+    if(!solver.factor(K) || !solver.solve(rhs, rho_plus_m)) {
+      res.termination = Termination::STALLED;
+      res.message = "the diffusion system could not be solved";
+      x = x_previous;
+      break;
+    }
+    const Vector rho_plus = rho_plus_m.col(0);
+
+    // velocity -grad(rho+)/rho+ at the vertices, tangential part
+    Matrix v = M * domain.face_gradient(x, rho_plus);
+    for(Eigen::Index i = 0; i < n; ++i) v.row(i) /= -rho_plus[i];
+    Matrix d = domain.tangent_part(x, v);
+    {
+      const Sparse_matrix L = domain.assembler().assemble(blocks);
+      flow.direction(Flow_state{x, A, L, rho_plus}, d);
+    }
+
+    if(!domain.advance(x, d, dt, x_new, res.steps)) {
+      res.termination = Termination::STALLED;
+      res.message = "no fold-over-free step was found at iteration " + std::to_string(res.iterations + 1) +
+                    "; the last bijective map is returned";
+      x = x_previous;
+      break;
+    }
+    x.swap(x_new);
+    ++res.iterations;
+    flow.after_step(res.iterations, x, domain);
+    M = domain.face_to_vertex(x);
+    rho = densities(population, domain.density_area(x), M).vertex;
+    error = flow.stop_measure(x_previous, x, opt.stop_on_recoupled_density ? relative_sd(rho) : relative_sd(rho_plus));
+    res.final_error = error;
+    if(opt.progress && !opt.progress(res.iterations, error)) { res.termination = Termination::CANCELLED; break; }
+    if(error < opt.tolerance) { res.termination = Termination::CONVERGED; break; }
+  }
+  return res;
+}
+
+} // namespace internal
+} // namespace Density_equalizing_maps
+} // namespace CGAL
+
+#endif // CGAL_DENSITY_EQUALIZING_MAPS_INTERNAL_DENSITY_ENGINE_H

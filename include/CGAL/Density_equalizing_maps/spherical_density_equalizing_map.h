@@ -1,0 +1,223 @@
+// Copyright (c) 2026 Density_equalizing_maps contributors.
+// This file is part of Density_equalizing_maps, a third-party CGAL package.
+// SPDX-License-Identifier: GPL-3.0-or-later
+
+#ifndef CGAL_DENSITY_EQUALIZING_MAPS_SPHERICAL_DENSITY_EQUALIZING_MAP_H
+#define CGAL_DENSITY_EQUALIZING_MAPS_SPHERICAL_DENSITY_EQUALIZING_MAP_H
+
+#include <CGAL/Density_equalizing_maps/Map_report.h>
+#include <CGAL/Density_equalizing_maps/parameters.h>
+#include <CGAL/Density_equalizing_maps/internal/ellipsoid_domain.h>
+#include <CGAL/Density_equalizing_maps/internal/engine_parameters.h>
+#include <CGAL/Density_equalizing_maps/internal/landmark_flow.h>
+#include <CGAL/Density_equalizing_maps/internal/spherical_conformal.h>
+
+namespace CGAL {
+namespace Density_equalizing_maps {
+namespace internal {
+
+/// The starting sphere: the user's `initial_map` (checked bijective), else
+/// the spherical conformal map with Moebius area correction (paper 001).
+template <class TriangleMesh, class NamedParameters>
+Matrix initial_spherical_map(const Mesh_arrays<TriangleMesh>& a, const NamedParameters& np, const Spd_solver& solver)
+{
+  using CGAL::parameters::get_parameter;
+  using CGAL::parameters::is_default_parameter;
+  Matrix S;
+  if constexpr(!is_default_parameter<NamedParameters, internal_np::initial_map_t>::value) {
+    S = read_points(a, get_parameter(np, internal_np::initial_map));
+    if(!S.allFinite()) throw Invalid_input("the initial map has non-finite coordinates");
+    for(Eigen::Index i = 0; i < S.rows(); ++i)
+      if(S.row(i).norm() == 0) throw Invalid_input("the initial map sends vertex " + std::to_string(i) + " to the origin");
+    normalize_rows(S);
+  } else {
+    S = mobius_area_correction(a.X, a.F, flash_spherical_map(a.X, a.F, solver).S);
+  }
+  const std::size_t folds = count_inverted_faces_about_center(S, a.F);
+  if(folds > 0)
+    throw Invalid_input("the initial spherical map is not bijective: " + std::to_string(folds) +
+                        " fold-overs (exact count)");
+  return S;
+}
+
+} // namespace internal
+
+/// \ingroup PkgDensityEqualizingMapsSphere
+/// \brief Computes the spherical density-equalizing map (SDEM) of a genus-0 closed mesh.
+///
+/// Starting from a bijective spherical map, the vertices flow on the unit sphere
+/// with the velocity \f$ -\nabla\rho/\rho \f$ of a density \f$ \rho \f$ that
+/// diffuses (Lyu, Lui, Choi 2024): regions of high population grow, regions of
+/// low population shrink, until the density (population / image area) is uniform.
+/// With the default population (the face areas of the input) the result is an
+/// area-preserving parameterization. Every step is checked for fold-overs in two
+/// stereographic charts, repaired with the Linear Beltrami Solver, and certified
+/// with exact predicates; if no fold-over-free step can be found the last
+/// bijective map is returned and `Map_report::termination` is `Termination::STALLED`.
+///
+/// \tparam TriangleMesh a model of `FaceListGraph`
+/// \tparam VertexPointOutMap a writable vertex property map with 3D points as values
+///
+/// \param tm the input mesh: closed, manifold, connected, genus 0, no degenerate face
+/// \param sphere_map receives the image of each vertex on the unit sphere
+/// \param np optional named parameters:
+/// \cgalNamedParamsBegin
+///   \cgalParamNBegin{face_population_map}
+///     \cgalParamDescription{a readable face property map with the positive population of each face}
+///     \cgalParamDefault{the face areas of the input (area-preserving map)}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{vertex_density_map}
+///     \cgalParamDescription{alternatively, a positive density per vertex; the population of a face is its area times the mean density of its corners}
+///     \cgalParamDefault{unused}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{initial_map}
+///     \cgalParamDescription{a readable vertex property map with a bijective starting map onto the sphere}
+///     \cgalParamDefault{`spherical_conformal_map()` with Moebius area correction}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{time_step}
+///     \cgalParamDescription{the step \f$\delta t\f$ of diffusion and advection}
+///     \cgalParamType{double}
+///     \cgalParamDefault{0.1}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{stopping_tolerance}
+///     \cgalParamDescription{stop when sd/mean of the diffused vertex density is below it}
+///     \cgalParamType{double}
+///     \cgalParamDefault{1e-3}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{number_of_iterations}
+///     \cgalParamDescription{maximum number of iterations}
+///     \cgalParamType{unsigned int}
+///     \cgalParamDefault{200}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{truncation}
+///     \cgalParamDescription{the Beltrami coefficient of an inverted face is set to modulus 1 - truncation before the LBS repair}
+///     \cgalParamType{double}
+///     \cgalParamDefault{0.1}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{progress_callback}
+///     \cgalParamDescription{a callable `bool(std::size_t iteration, double error)` called once per iteration; returning `false` stops with the last bijective map (`Termination::CANCELLED`)}
+///     \cgalParamDefault{none}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{vertex_point_map, vertex_index_map, sparse_linear_solver}
+///     \cgalParamDescription{as for `spherical_conformal_map()`}
+///   \cgalParamNEnd
+/// \cgalNamedParamsEnd
+///
+/// \returns a `Map_report` (iterations, termination, final sd/mean, fold-overs = 0 unless stalled from the start)
+/// \throws Invalid_input on an invalid mesh, population or parameter; nothing is written then.
+template <class TriangleMesh, class VertexPointOutMap,
+          class NamedParameters = parameters::Default_named_parameters>
+Map_report spherical_density_equalizing_map(const TriangleMesh& tm, VertexPointOutMap sphere_map,
+                                            const NamedParameters& np = parameters::default_values())
+{
+  using CGAL::parameters::choose_parameter;
+  using CGAL::parameters::get_parameter;
+  const auto a = internal::closed_surface_arrays(tm, np, 2);
+  const internal::Vector population = internal::population_from_parameters(a, np);
+  const internal::Engine_options options = internal::engine_options_from_parameters(np, 0.1, 1e-3, 200);
+  const double truncation = choose_parameter(get_parameter(np, internal_np::truncation), 0.1);
+  if(!(truncation > 0 && truncation < 1)) throw Invalid_input("truncation must lie in (0, 1)");
+  const auto solver = internal::solver_from_parameters(np);
+
+  internal::Matrix x = internal::initial_spherical_map(a, np, *solver);
+  internal::Ellipsoid_domain sphere(a.F, x, Eigen::Vector3d::Ones(), truncation, *solver);
+  internal::Density_flow flow;
+  const internal::Engine_result r = internal::run_density_equalization(sphere, flow, x, population, options, *solver);
+
+  Map_report report;
+  internal::fill_report(r, report);
+  report.fold_overs = sphere.fold_overs(x);
+  internal::write_points(a, x, sphere_map);
+  return report;
+}
+
+/// \ingroup PkgDensityEqualizingMapsSphere
+/// \brief Computes the landmark-aligned spherical density-equalizing map (LSDEM).
+///
+/// Minimizes \f$ \alpha E_{density} + \beta E_{harmonic} + \gamma E_{landmark} \f$
+/// over maps onto the unit sphere: the SDEM flow, plus Laplacian smoothing of the
+/// map and a pull of each landmark vertex towards its target. Before each step
+/// the sphere is rotated by the rotation that best aligns the landmarks with
+/// their targets, computed in closed form (Kabsch) where the paper uses gradient
+/// descent over Euler angles: it is the global minimizer of the same term.
+/// Stops when the largest vertex update (sum of absolute coordinate changes)
+/// falls below the tolerance. Fold-overs are repaired as in
+/// `spherical_density_equalizing_map()`.
+///
+/// \tparam Landmarks a range of `std::pair<vertex_descriptor, Point_3>`; targets must lie on the unit
+///         sphere (within 1e-4; they are then normalized)
+///
+/// \param tm the input mesh (genus 0, closed)
+/// \param landmarks the landmark vertices and their targets
+/// \param sphere_map receives the map
+/// \param np as `spherical_density_equalizing_map()`, plus:
+/// \cgalNamedParamsBegin
+///   \cgalParamNBegin{density_weight}
+///     \cgalParamDescription{\f$\alpha\f$}
+///     \cgalParamType{double}
+///     \cgalParamDefault{1}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{harmonic_weight}
+///     \cgalParamDescription{\f$\beta\f$}
+///     \cgalParamType{double}
+///     \cgalParamDefault{2}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{landmark_weight}
+///     \cgalParamDescription{\f$\gamma\f$}
+///     \cgalParamType{double}
+///     \cgalParamDefault{5}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{time_step}
+///     \cgalParamDescription{step size}
+///     \cgalParamType{double}
+///     \cgalParamDefault{0.01}
+///   \cgalParamNEnd
+/// \cgalNamedParamsEnd
+/// \returns a `Map_report` with `landmark_error` = mean distance between mapped landmarks and targets
+template <class TriangleMesh, class Landmarks, class VertexPointOutMap,
+          class NamedParameters = parameters::Default_named_parameters>
+Map_report landmark_aligned_spherical_density_equalizing_map(const TriangleMesh& tm, const Landmarks& landmarks,
+                                                             VertexPointOutMap sphere_map,
+                                                             const NamedParameters& np = parameters::default_values())
+{
+  using CGAL::parameters::choose_parameter;
+  using CGAL::parameters::get_parameter;
+  const auto a = internal::closed_surface_arrays(tm, np, 2);
+  const internal::Vector population = internal::population_from_parameters(a, np);
+  const internal::Engine_options options = internal::engine_options_from_parameters(np, 0.01, 1e-3, 200);
+  const double truncation = choose_parameter(get_parameter(np, internal_np::truncation), 0.1);
+  if(!(truncation > 0 && truncation < 1)) throw Invalid_input("truncation must lie in (0, 1)");
+
+  internal::Landmark_flow flow;
+  internal::read_landmarks(tm, landmarks, np, flow.vertices, flow.targets);
+  if(flow.vertices.empty()) throw Invalid_input("no landmarks given");
+  for(Eigen::Index k = 0; k < flow.targets.rows(); ++k) {
+    const double r = flow.targets.row(k).norm();
+    if(std::abs(r - 1) > 1e-4)
+      throw Invalid_input("landmark " + std::to_string(k) + ": target is not on the unit sphere (norm " +
+                          std::to_string(r) + ")");
+    flow.targets.row(k) /= r;
+  }
+  flow.alpha = choose_parameter(get_parameter(np, internal_np::density_weight), 1.);
+  flow.beta = choose_parameter(get_parameter(np, internal_np::harmonic_weight), 2.);
+  flow.gamma = choose_parameter(get_parameter(np, internal_np::landmark_weight), 5.);
+  if(!(flow.alpha >= 0 && flow.beta >= 0 && flow.gamma >= 0))
+    throw Invalid_input("the weights alpha, beta, gamma must be non-negative");
+
+  const auto solver = internal::solver_from_parameters(np);
+  internal::Matrix x = internal::initial_spherical_map(a, np, *solver);
+  internal::Ellipsoid_domain sphere(a.F, x, Eigen::Vector3d::Ones(), truncation, *solver);
+  const internal::Engine_result r = internal::run_density_equalization(sphere, flow, x, population, options, *solver);
+
+  Map_report report;
+  internal::fill_report(r, report);
+  report.fold_overs = sphere.fold_overs(x);
+  report.landmark_error = flow.mean_landmark_error(x);
+  internal::write_points(a, x, sphere_map);
+  return report;
+}
+
+} // namespace Density_equalizing_maps
+} // namespace CGAL
+
+#endif // CGAL_DENSITY_EQUALIZING_MAPS_SPHERICAL_DENSITY_EQUALIZING_MAP_H
