@@ -40,6 +40,8 @@ enum class Termination
 
 /// \ingroup PkgDensityEqualizingMapsRef
 /// Returns a lower-case name for a termination value (`"converged"`, ...).
+/// \param t the termination value
+/// \returns a static, null-terminated string
 inline const char* to_string(Termination t)
 {
   switch(t) {
@@ -80,9 +82,9 @@ struct Map_report
   /// a human-readable note on anything unusual (e.g. why a run stalled)
   std::string message;
 
-  /// true when the output is a bijective map (no fold-over)
+  /// \returns `true` when the output is a bijective map (no fold-over)
   bool is_bijective() const { return fold_overs == 0; }
-  /// true when the method met its stopping criterion (or is direct)
+  /// \returns `true` when the method met its stopping criterion (or is direct)
   bool converged() const
   { return termination == Termination::CONVERGED || termination == Termination::NOT_ITERATIVE; }
 };
