@@ -1,0 +1,331 @@
+// Copyright (c) 2026 Density_equalizing_maps contributors.
+// This file is part of Density_equalizing_maps, a third-party CGAL package.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// The `dem` command-line contract (DESIGN.md): exit codes, messages on
+// stderr, the output mesh (same connectivity, vertices on the domain) and the
+// metrics JSON (every key present, parseable). Runs build/bin/dem (DEM_CLI)
+// on small generated meshes written to a temporary folder.
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/IO/polygon_soup_io.h>
+
+#include <boost/property_tree/json_parser.hpp>
+#include <boost/property_tree/ptree.hpp>
+
+#include <array>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <sys/wait.h> // WIFEXITED
+#include <unistd.h>   // getpid
+
+#ifndef DEM_CLI
+#error "DEM_CLI must name the dem executable"
+#endif
+
+namespace fs = std::filesystem;
+typedef CGAL::Exact_predicates_inexact_constructions_kernel::Point_3 Point;
+typedef std::array<double, 3> P3;
+typedef std::array<int, 3> Tri;
+
+namespace {
+
+int failures = 0;
+bool check(bool ok, const std::string& what)
+{
+  if(!ok) { ++failures; std::cerr << "FAILED: " << what << std::endl; }
+  return ok;
+}
+
+fs::path tmp_dir;
+
+struct Soup { std::vector<P3> V; std::vector<Tri> T; };
+
+// Geodesic icosphere (frequency-2^k Loop-style midpoint subdivision), outward oriented.
+Soup icosphere(int subdivisions)
+{
+  const double t = (1 + std::sqrt(5.)) / 2;
+  Soup s;
+  s.V = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
+         {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+  s.T = {{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+         {11, 10, 2}, {10, 7, 6}, {7, 1, 8}, {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8},
+         {3, 8, 9}, {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
+  auto normalize = [](P3 p) { const double n = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+                              return P3{p[0] / n, p[1] / n, p[2] / n}; };
+  for(P3& p : s.V) p = normalize(p);
+  for(int level = 0; level < subdivisions; ++level) {
+    std::map<std::pair<int, int>, int> mid;
+    auto midpoint = [&](int a, int b) {
+      const auto key = std::make_pair(std::min(a, b), std::max(a, b));
+      auto it = mid.find(key);
+      if(it != mid.end()) return it->second;
+      s.V.push_back(normalize({(s.V[a][0] + s.V[b][0]) / 2, (s.V[a][1] + s.V[b][1]) / 2, (s.V[a][2] + s.V[b][2]) / 2}));
+      return mid[key] = int(s.V.size()) - 1;
+    };
+    std::vector<Tri> T;
+    for(const Tri& f : s.T) {
+      const int a = midpoint(f[0], f[1]), b = midpoint(f[1], f[2]), c = midpoint(f[2], f[0]);
+      T.push_back({f[0], a, c}); T.push_back({f[1], b, a}); T.push_back({f[2], c, b}); T.push_back({a, b, c});
+    }
+    s.T = T;
+  }
+  // a non-round shape: stretch, so that the map is not the identity
+  for(P3& p : s.V) { p[0] *= 1.6; p[2] *= 0.8; }
+  return s;
+}
+
+Soup torus(double R, double r, int nu, int nv)
+{
+  Soup s;
+  const double pi = std::acos(-1.);
+  for(int i = 0; i < nu; ++i)
+    for(int j = 0; j < nv; ++j) {
+      const double u = 2 * pi * i / nu, v = 2 * pi * j / nv;
+      s.V.push_back({(R + r * std::cos(v)) * std::cos(u), (R + r * std::cos(v)) * std::sin(u), r * std::sin(v)});
+    }
+  auto id = [&](int i, int j) { return ((i + nu) % nu) * nv + (j + nv) % nv; };
+  for(int i = 0; i < nu; ++i)
+    for(int j = 0; j < nv; ++j) {
+      s.T.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      s.T.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  return s;
+}
+
+std::string write_off(const std::string& name, const Soup& s)
+{
+  const fs::path p = tmp_dir / name;
+  std::ofstream out(p);
+  out.precision(17);
+  out << "OFF\n" << s.V.size() << " " << s.T.size() << " 0\n";
+  for(const P3& v : s.V) out << v[0] << " " << v[1] << " " << v[2] << "\n";
+  for(const Tri& t : s.T) out << "3 " << t[0] << " " << t[1] << " " << t[2] << "\n";
+  return p.string();
+}
+
+std::string write_obj(const std::string& name, const Soup& s)
+{
+  const fs::path p = tmp_dir / name;
+  std::ofstream out(p);
+  out.precision(17);
+  for(const P3& v : s.V) out << "v " << v[0] << " " << v[1] << " " << v[2] << "\n";
+  for(const Tri& t : s.T) out << "f " << t[0] + 1 << " " << t[1] + 1 << " " << t[2] + 1 << "\n";
+  return p.string();
+}
+
+std::string write_text(const std::string& name, const std::string& content)
+{
+  const fs::path p = tmp_dir / name;
+  std::ofstream(p) << content;
+  return p.string();
+}
+
+std::string read_text(const fs::path& p)
+{
+  std::ifstream in(p);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+struct Result { int code = -1; std::string out, err; };
+
+/// Runs `dem ARGS`, capturing stdout and stderr.
+Result dem(const std::string& args)
+{
+  const fs::path out = tmp_dir / "stdout.txt", err = tmp_dir / "stderr.txt";
+  const std::string cmd = std::string("\"") + DEM_CLI + "\" " + args + " > \"" + out.string() + "\" 2> \"" +
+                          err.string() + "\"";
+  const int status = std::system(cmd.c_str());
+  Result r;
+  r.code = (status != -1 && WIFEXITED(status)) ? WEXITSTATUS(status) : -1;
+  r.out = read_text(out);
+  r.err = read_text(err);
+  return r;
+}
+
+bool contains(const std::string& s, const std::string& sub) { return s.find(sub) != std::string::npos; }
+
+bool expect(const Result& r, int code, const std::string& what, const std::string& message = "")
+{
+  bool ok = check(r.code == code, what + ": exit " + std::to_string(r.code) + ", expected " + std::to_string(code) +
+                                      " (stderr: " + r.err + ")");
+  if(!message.empty())
+    ok = check(contains(r.err, message), what + ": stderr should mention \"" + message + "\", got: " + r.err) && ok;
+  return ok;
+}
+
+const char* metric_keys[] = {"method", "vertices", "faces", "seconds", "iterations", "converged", "fold_overs",
+                             "mean_abs_mu", "sd_abs_mu", "mean_abs_darea", "sd_abs_darea", "density_var_initial",
+                             "density_var_final", "face_density_var_initial", "face_density_var_final",
+                             "landmark_error", "radii"};
+
+/// Parses the metrics file and checks every key of the contract; returns the tree.
+boost::property_tree::ptree check_metrics(const std::string& file, const std::string& method, std::size_t nv,
+                                          std::size_t nf)
+{
+  boost::property_tree::ptree pt;
+  try {
+    boost::property_tree::read_json(file, pt);
+  } catch(const std::exception& e) {
+    check(false, "metrics " + file + " is not valid JSON: " + e.what());
+    return pt;
+  }
+  for(const char* k : metric_keys) check(pt.count(k) == 1, std::string("metrics key ") + k + " missing");
+  check(pt.get<std::string>("method", "") == method, "metrics method");
+  check(pt.get<std::size_t>("vertices", 0) == nv, "metrics vertices");
+  check(pt.get<std::size_t>("faces", 0) == nf, "metrics faces");
+  check(pt.get<std::size_t>("fold_overs", 1) == 0, "metrics fold_overs == 0");
+  check(pt.get<double>("seconds", -1) >= 0, "metrics seconds");
+  const double mu = pt.get<double>("mean_abs_mu", -1);
+  check(mu >= 0 && mu < 1, "metrics mean_abs_mu in [0,1)");
+  check(pt.get<double>("mean_abs_darea", -1) >= 0, "metrics mean_abs_darea");
+  check(pt.get<double>("density_var_final", -1) >= 0, "metrics density_var_final");
+  return pt;
+}
+
+/// The output has the input's faces, in order, and its vertices on the domain.
+void check_output(const std::string& file, const Soup& in, double (*domain_residual)(const Point&),
+                  const std::string& what)
+{
+  std::vector<Point> points;
+  std::vector<std::vector<std::size_t>> polygons;
+  if(!check(CGAL::IO::read_polygon_soup(file, points, polygons), what + ": output readable")) return;
+  check(points.size() == in.V.size(), what + ": same number of vertices");
+  bool same = polygons.size() == in.T.size();
+  for(std::size_t k = 0; same && k < polygons.size(); ++k)
+    same = polygons[k].size() == 3 && int(polygons[k][0]) == in.T[k][0] && int(polygons[k][1]) == in.T[k][1] &&
+           int(polygons[k][2]) == in.T[k][2];
+  check(same, what + ": same connectivity");
+  double worst = 0;
+  for(const Point& p : points) worst = std::max(worst, domain_residual(p));
+  check(worst < 1e-9, what + ": vertices on the domain (worst residual " + std::to_string(worst) + ")");
+}
+
+double unit_sphere_residual(const Point& p) { return std::abs(std::sqrt(CGAL::to_double(p.x() * p.x() + p.y() * p.y() + p.z() * p.z())) - 1); }
+
+} // namespace
+
+int main()
+{
+  tmp_dir = fs::temp_directory_path() / ("dem_test_cli_" + std::to_string(::getpid()));
+  fs::create_directories(tmp_dir);
+
+  const Soup sphere = icosphere(3); // 642 vertices, 1280 faces
+  const std::string sphere_off = write_off("sphere.off", sphere);
+  const std::string sphere_obj = write_obj("sphere.obj", sphere);
+  const std::string metrics = (tmp_dir / "metrics.json").string();
+  const std::string output = (tmp_dir / "out.off").string();
+
+  // --- a valid run: output, metrics, summary line
+  {
+    Result r = dem("spherical-conformal \"" + sphere_off + "\" --output \"" + output + "\" --metrics \"" + metrics + "\"");
+    if(expect(r, 0, "spherical-conformal on an icosphere")) {
+      check(!r.out.empty() && contains(r.out, "spherical-conformal"), "one-line summary on stdout");
+      check_metrics(metrics, "spherical-conformal", sphere.V.size(), sphere.T.size());
+      check_output(output, sphere, unit_sphere_residual, "spherical-conformal output");
+    }
+    fs::remove(output);
+    fs::remove(metrics);
+    r = dem("spherical-conformal \"" + sphere_obj + "\" --mobius --output \"" + output + "\"");
+    if(expect(r, 0, "spherical-conformal --mobius on an OBJ file"))
+      check_output(output, sphere, unit_sphere_residual, "OBJ input, --mobius output");
+  }
+
+  // --- invalid meshes: exit 3 with a message naming the problem
+  {
+    const Soup triangle{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {{0, 1, 2}}};
+    expect(dem("spherical-conformal \"" + write_off("triangle.off", triangle) + "\""), 3, "single triangle");
+
+    Soup open = icosphere(1);
+    open.T.pop_back();
+    expect(dem("spherical-conformal \"" + write_off("open.off", open) + "\""), 3, "icosphere with a hole",
+           "boundary");
+
+    // three triangles on the edge (0,1)
+    const Soup fin{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}}, {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}}};
+    expect(dem("spherical-conformal \"" + write_off("fin.off", fin) + "\""), 3, "non-manifold edge", "non-manifold");
+
+    const Soup ring = torus(3, 1, 16, 8);
+    expect(dem("spherical-conformal \"" + write_off("torus.off", ring) + "\""), 3, "genus-1 mesh for a sphere method",
+           "genus");
+
+    expect(dem("spherical-conformal \"" + (tmp_dir / "missing.off").string() + "\""), 3, "missing file");
+    expect(dem("spherical-conformal \"" + write_text("garbage.off", "OFF\n3 1 0\n0 0 0\n1 x 0\n") + "\""), 3,
+           "unreadable file");
+  }
+
+  // --- usage errors: exit 2
+  {
+    expect(dem("conformal-thing \"" + sphere_off + "\""), 2, "unknown method", "unknown method");
+    expect(dem("spherical-conformal \"" + sphere_off + "\" --frobnicate"), 2, "unknown option", "unknown option");
+    expect(dem("spherical-conformal \"" + sphere_off + "\" --output"), 2, "missing option value", "needs");
+    expect(dem("sdem \"" + sphere_off + "\" --time-step abc"), 2, "unreadable number", "not a number");
+    expect(dem("spherical-conformal"), 2, "missing INPUT", "INPUT");
+    expect(dem("sdem \"" + sphere_off + "\" --max-iterations 1.5"), 2, "non-integer iteration count");
+  }
+
+  // --- sidecar files: exit 3, the message names the line
+  {
+    std::string lines;
+    for(std::size_t k = 0; k < sphere.T.size(); ++k) lines += (k == 2 ? "1.0 oops\n" : "1.0\n");
+    Result r = dem("spherical-conformal \"" + sphere_off + "\" --population \"" + write_text("bad.pop", lines) + "\"");
+    expect(r, 3, "malformed population line", "line 3");
+
+    std::string short_pop;
+    for(std::size_t k = 0; k + 1 < sphere.T.size(); ++k) short_pop += "2.5\n";
+    expect(dem("spherical-conformal \"" + sphere_off + "\" --population \"" + write_text("short.pop", short_pop) + "\""),
+           3, "population of the wrong length", std::to_string(sphere.T.size() - 1) + " values");
+
+    std::string negative = "# comment line\n\n";
+    for(std::size_t k = 0; k < sphere.T.size(); ++k) negative += (k == 5 ? "-1\n" : "1\n");
+    expect(dem("spherical-conformal \"" + sphere_off + "\" --population \"" + write_text("neg.pop", negative) + "\""),
+           3, "non-positive population", "line 8");
+
+    std::string good;
+    for(std::size_t k = 0; k < sphere.T.size(); ++k) good += (k % 7 == 0 ? "3\n" : "1 # weight\n");
+    expect(dem("spherical-conformal \"" + sphere_off + "\" --population \"" + write_text("good.pop", good) + "\""), 0,
+           "valid population with comments");
+
+    const std::string bad_landmarks = write_text("bad.lm", "# v x y z\n0 1 0 0\n99999 0 1 0\n");
+    r = dem("lsdem \"" + sphere_off + "\" --landmarks \"" + bad_landmarks + "\"");
+    if(contains(r.err, "not available"))
+      std::cerr << "note: lsdem not available in this build, landmark range check done on ellipsoidal-quasiconformal\n";
+    else
+      expect(r, 3, "landmark index out of range", "out of range");
+    const std::string malformed_landmarks = write_text("malformed.lm", "0 1 0 0\n5 0 1\n");
+    r = dem("lsdem \"" + sphere_off + "\" --landmarks \"" + malformed_landmarks + "\"");
+    if(!contains(r.err, "not available")) expect(r, 3, "malformed landmark line", "line 2");
+  }
+
+  // --- a density-equalizing run with a prescribed population, when available
+  {
+    std::string pop;
+    for(std::size_t k = 0; k < sphere.T.size(); ++k) pop += (sphere.V[sphere.T[k][0]][2] > 0.3 ? "4\n" : "1\n");
+    const std::string pop_file = write_text("cap.pop", pop);
+    Result r = dem("sdem \"" + sphere_off + "\" --population \"" + pop_file + "\" --max-iterations 30 --output \"" +
+                   output + "\" --metrics \"" + metrics + "\"");
+    if(contains(r.err, "not available")) std::cerr << "note: sdem not available in this build\n";
+    else if(expect(r, 0, "sdem on an icosphere")) {
+      auto pt = check_metrics(metrics, "sdem", sphere.V.size(), sphere.T.size());
+      check(pt.get<double>("density_var_final", 1e9) < pt.get<double>("density_var_initial", 0),
+            "sdem lowers the density variance");
+      check(pt.get<std::string>("iterations", "null") != "null", "sdem reports iterations");
+      check_output(output, sphere, unit_sphere_residual, "sdem output");
+    }
+  }
+
+  fs::remove_all(tmp_dir);
+  if(failures) { std::cerr << failures << " failure(s)\n"; return 1; }
+  std::cout << "test_cli: all checks passed\n";
+  return 0;
+}
