@@ -7,6 +7,8 @@
 
 // The quantities of the papers' tables (ALGORITHMS.md section 11).
 
+#include <CGAL/Density_equalizing_maps/internal/beltrami.h>
+#include <CGAL/Density_equalizing_maps/internal/fold_overs.h>
 #include <CGAL/Density_equalizing_maps/internal/operators.h>
 
 #include <cmath>
@@ -50,6 +52,85 @@ inline Densities densities(const Vector& population, const Vector& area, const S
   Densities d;
   d.face = population.cwiseQuotient(area);
   d.vertex = M * d.face;
+  return d;
+}
+
+// ---------------------------------------------------------------------------
+// Array-level forms of the public measures (measures.h).
+
+/// Sign of the volume enclosed by a closed mesh (sum of x_i . (x_j x x_k) / 6):
+/// +1 for outward-oriented faces, -1 for inward-oriented ones.
+inline int enclosed_volume_sign(const Matrix& X, const Index_matrix& F)
+{
+  double v = 0;
+  for(Eigen::Index k = 0; k < F.rows(); ++k)
+    v += row3(X, F(k, 0)).dot(row3(X, F(k, 1)).cross(row3(X, F(k, 2))));
+  return v < 0 ? -1 : 1;
+}
+
+/// Faces of the map Y of a closed star-shaped image (sphere, ellipsoid) whose
+/// exact orientation about `center` is not `expected` (+1 or -1). A face with
+/// a non-finite corner is counted as folded (it has no valid image).
+inline std::size_t count_fold_overs_about_center(const Matrix& Y, const Index_matrix& F, int expected,
+                                                 const Eigen::Vector3d& center)
+{
+  std::vector<char> finite(static_cast<std::size_t>(Y.rows()));
+  std::vector<Epick::Point_3> P(static_cast<std::size_t>(Y.rows()));
+  for(Eigen::Index i = 0; i < Y.rows(); ++i) {
+    finite[i] = std::isfinite(Y(i, 0)) && std::isfinite(Y(i, 1)) && std::isfinite(Y(i, 2));
+    if(finite[i]) P[i] = Epick::Point_3(Y(i, 0), Y(i, 1), Y(i, 2));
+  }
+  const Epick::Point_3 c(center.x(), center.y(), center.z());
+  const CGAL::Orientation want = expected < 0 ? CGAL::NEGATIVE : CGAL::POSITIVE;
+  std::size_t n = 0;
+  for(Eigen::Index k = 0; k < F.rows(); ++k) {
+    const int i = F(k, 0), j = F(k, 1), l = F(k, 2);
+    if(!finite[i] || !finite[j] || !finite[l] || CGAL::orientation(c, P[i], P[j], P[l]) != want) ++n;
+  }
+  return n;
+}
+
+/// Planar version: faces of the chart W (n x 2) whose exact orientation is not
+/// `expected` (+1 counter-clockwise); non-finite corners count as folded.
+inline std::size_t count_planar_fold_overs_checked(const Matrix& W, const Index_matrix& F, int expected)
+{
+  std::vector<char> finite(static_cast<std::size_t>(W.rows()));
+  std::vector<Epick::Point_2> P(static_cast<std::size_t>(W.rows()));
+  for(Eigen::Index i = 0; i < W.rows(); ++i) {
+    finite[i] = std::isfinite(W(i, 0)) && std::isfinite(W(i, 1));
+    if(finite[i]) P[i] = Epick::Point_2(W(i, 0), W(i, 1));
+  }
+  std::size_t n = 0;
+  for(Eigen::Index k = 0; k < F.rows(); ++k) {
+    const int i = F(k, 0), j = F(k, 1), l = F(k, 2);
+    if(!finite[i] || !finite[j] || !finite[l] || static_cast<int>(CGAL::orientation(P[i], P[j], P[l])) != expected)
+      ++n;
+  }
+  return n;
+}
+
+/// Variances of the normalized face density rho_F = population / |f(T)| and of
+/// the normalized vertex density rho_V = M(f) rho_F on the map Y (ALGORITHMS.md 11).
+struct Density_variances { double vertex = 0, face = 0; };
+
+inline Density_variances density_variances(const Matrix& Y, const Index_matrix& F, const Vector& population)
+{
+  const Vector area = face_areas(Y, F);
+  const Densities d = densities(population, area, face_to_vertex(area, F, Y.rows()));
+  Density_variances v;
+  v.face = normalized_variance(d.face);
+  v.vertex = normalized_variance(d.vertex);
+  return v;
+}
+
+/// Mean and sd of |mu| (isometric flattening, 1.7) and of |d_area| (1.9) from X to Y.
+struct Distortion { Mean_sd abs_mu, abs_darea; };
+
+inline Distortion distortion(const Matrix& X, const Matrix& Y, const Index_matrix& F)
+{
+  Distortion d;
+  d.abs_mu = mean_sd(beltrami_magnitude_3d(X, Y, F));
+  d.abs_darea = mean_sd(log_area_ratio(face_areas(X, F), face_areas(Y, F)).cwiseAbs());
   return d;
 }
 
