@@ -117,13 +117,21 @@ inline void normalize_rows(Matrix& S)
 
 /// A rotation R with R c = e_z (c need not be normalized): Rodrigues about c x e_z;
 /// identity at the north pole, half-turn about x at the south pole.
+/// sin and cos of the angle are read off c directly (not from 1 + c.e_z, which
+/// cancels near the south pole), so R is orthonormal and R c = e_z to rounding.
 inline Eigen::Matrix3d rotation_to_north_pole(Eigen::Vector3d c)
 {
   c.normalize();
-  const Eigen::Vector3d ez(0, 0, 1);
-  if(c.z() > 1 - 1e-15) return Eigen::Matrix3d::Identity();
-  if(c.z() < -1 + 1e-15) return Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitX()).toRotationMatrix();
-  return Eigen::Quaterniond::FromTwoVectors(c, ez).toRotationMatrix();
+  const double sine = std::hypot(c.x(), c.y()), cosine = c.z();
+  if(sine == 0) {
+    if(cosine > 0) return Eigen::Matrix3d::Identity();
+    return Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  }
+  const Eigen::Vector3d k(c.y() / sine, -c.x() / sine, 0.); // unit axis c x e_z / |c x e_z|
+  const double one_minus_cos = cosine > 0 ? sine * sine / (1 + cosine) : 1 - cosine;
+  Eigen::Matrix3d K;
+  K << 0, -k.z(), k.y(), k.z(), 0, -k.x(), -k.y(), k.x(), 0;
+  return cosine * Eigen::Matrix3d::Identity() + sine * K + one_minus_cos * k * k.transpose();
 }
 
 /// Radial scaling onto the ellipsoid x^2/a^2 + y^2/b^2 + z^2/c^2 = 1.
