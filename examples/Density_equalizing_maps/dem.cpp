@@ -185,6 +185,115 @@ Run run_sdem(Problem& pb, const Options& opt, bool landmark_aligned)
 }
 #endif
 
+#ifdef DEM_HAS_ELLIPSOIDAL_CONFORMAL
+Run run_ellipsoidal_conformal(Problem& pb, const Options& opt)
+{
+  Run run;
+  Point_map out = fresh_point_map(pb.mesh, "v:dem_ellipsoid");
+  const auto t0 = std::chrono::steady_clock::now();
+  if(opt.radii)
+    run.report = DEM::ellipsoidal_conformal_map(
+        pb.mesh, out, NP::combine(NP::ellipsoid_radii(*opt.radii), NP::optimize_radii(opt.optimize_radii)));
+  else
+    run.report = DEM::ellipsoidal_conformal_map(pb.mesh, out, NP::optimize_radii(opt.optimize_radii));
+  run.seconds = seconds_since(t0);
+  run.Y = to_matrix(pb.mesh, out);
+  return run;
+}
+
+// Landmark targets given on the unit sphere (as in the shared *.landmarks.txt
+// files) are mapped to the ellipsoid by (x, y, z) -> (a x, b y, c z).
+Run run_ellipsoidal_quasiconformal(Problem& pb, const Options& opt)
+{
+  Run run;
+  const std::array<double, 3> radii = opt.radii ? *opt.radii : DEM::bounding_box_ellipsoid_radii(pb.mesh);
+  bool on_unit_sphere = true;
+  for(const auto& l : pb.landmarks)
+    on_unit_sphere = on_unit_sphere && std::abs(std::sqrt(CGAL::to_double(l.second.x() * l.second.x() +
+                                                                          l.second.y() * l.second.y() +
+                                                                          l.second.z() * l.second.z())) - 1) <= 1e-6;
+  if(on_unit_sphere && !(radii[0] == 1 && radii[1] == 1 && radii[2] == 1)) {
+    for(auto& l : pb.landmarks)
+      l.second = Point_3(radii[0] * l.second.x(), radii[1] * l.second.y(), radii[2] * l.second.z());
+    char buf[200];
+    std::snprintf(buf, sizeof buf, "the landmark targets lie on the unit sphere: mapped to the ellipsoid "
+                  "(%.6g, %.6g, %.6g) by (x, y, z) -> (a x, b y, c z)", radii[0], radii[1], radii[2]);
+    run.notes.push_back(buf);
+  }
+  Point_map out = fresh_point_map(pb.mesh, "v:dem_ellipsoid");
+  const auto t0 = std::chrono::steady_clock::now();
+  run.report = DEM::ellipsoidal_quasiconformal_map(
+      pb.mesh, pb.landmarks, out,
+      NP::combine(NP::ellipsoid_radii(radii), NP::landmark_weight(opt.lambda.value_or(1.))));
+  run.seconds = seconds_since(t0);
+  run.Y = to_matrix(pb.mesh, out);
+  return run;
+}
+#endif
+
+#if defined(DEM_HAS_EDEM) && defined(DEM_HAS_ELLIPSOIDAL_CONFORMAL)
+// EDEM starts from the ellipsoidal conformal map with the same radii (the
+// library's default), computed here and handed over so that the initial
+// density variance is measured on it. EDEQ starts from the conformal map with
+// the initial radii; it is computed for the metrics only (outside the timing).
+Run run_edem(Problem& pb, const Options& opt, bool quasiconformal)
+{
+  Run run;
+  Point_map init = fresh_point_map(pb.mesh, "v:dem_initial");
+  Point_map out = fresh_point_map(pb.mesh, "v:dem_edem");
+  Progress progress(opt.quiet);
+  const std::array<double, 3> radii = *opt.radii;
+  if(!quasiconformal) {
+    const auto t0 = std::chrono::steady_clock::now();
+    DEM::ellipsoidal_conformal_map(pb.mesh, init, NP::ellipsoid_radii(radii));
+    run.report = DEM::ellipsoidal_density_equalizing_map(
+        pb.mesh, out,
+        NP::combine(NP::ellipsoid_radii(radii), NP::initial_map(init), NP::face_population_map(pb.population_map),
+                    NP::progress_callback(progress.callback()), NP::time_step(opt.time_step.value_or(0.1)),
+                    NP::stopping_tolerance(opt.tolerance.value_or(1e-3)),
+                    CGAL::parameters::number_of_iterations(opt.max_iterations.value_or(300))));
+    run.seconds = seconds_since(t0);
+  } else {
+    const auto t0 = std::chrono::steady_clock::now();
+    run.report = DEM::ellipsoidal_density_equalizing_quasiconformal_map(
+        pb.mesh, out,
+        NP::combine(NP::ellipsoid_radii(radii), NP::face_population_map(pb.population_map),
+                    NP::progress_callback(progress.callback()), NP::beltrami_weight(opt.alpha.value_or(5.)),
+                    NP::time_step(opt.time_step.value_or(0.1)), NP::stopping_tolerance(opt.tolerance.value_or(1e-5)),
+                    CGAL::parameters::number_of_iterations(opt.max_iterations.value_or(300))));
+    run.seconds = seconds_since(t0);
+    DEM::ellipsoidal_conformal_map(pb.mesh, init, NP::ellipsoid_radii(radii));
+  }
+  run.Y0 = to_matrix(pb.mesh, init);
+  run.Y = to_matrix(pb.mesh, out);
+  return run;
+}
+#endif
+
+#ifdef DEM_HAS_TDEM
+Run run_toroidal(Problem& pb, const Options& opt, bool parameterization)
+{
+  Run run;
+  Point_map out = fresh_point_map(pb.mesh, "v:dem_torus");
+  Progress progress(opt.quiet);
+  const auto common = NP::combine(
+      NP::torus_radii(*opt.torus), NP::face_population_map(pb.population_map),
+      NP::progress_callback(progress.callback()), NP::time_step(opt.time_step.value_or(0.1)),
+      NP::stopping_tolerance(opt.tolerance.value_or(1e-2)),
+      CGAL::parameters::number_of_iterations(opt.max_iterations.value_or(1000)));
+  const auto t0 = std::chrono::steady_clock::now();
+  if(!parameterization)
+    run.report = DEM::toroidal_density_equalizing_map(pb.mesh, out, common);
+  else if(!pb.cut_edges.empty())
+    run.report = DEM::toroidal_parameterization(pb.mesh, out, NP::combine(NP::cut_edges(pb.cut_edges), common));
+  else
+    run.report = DEM::toroidal_parameterization(pb.mesh, out, common);
+  run.seconds = seconds_since(t0);
+  run.Y = to_matrix(pb.mesh, out);
+  return run;
+}
+#endif
+
 Run run_method(Problem& pb, const Options& opt)
 {
   switch(opt.method) {
@@ -192,6 +301,18 @@ Run run_method(Problem& pb, const Options& opt)
 #ifdef DEM_HAS_SDEM
     case Method::SDEM: return run_sdem(pb, opt, false);
     case Method::LSDEM: return run_sdem(pb, opt, true);
+#endif
+#ifdef DEM_HAS_ELLIPSOIDAL_CONFORMAL
+    case Method::ELLIPSOIDAL_CONFORMAL: return run_ellipsoidal_conformal(pb, opt);
+    case Method::ELLIPSOIDAL_QUASICONFORMAL: return run_ellipsoidal_quasiconformal(pb, opt);
+#endif
+#if defined(DEM_HAS_EDEM) && defined(DEM_HAS_ELLIPSOIDAL_CONFORMAL)
+    case Method::EDEM: return run_edem(pb, opt, false);
+    case Method::EDEQ: return run_edem(pb, opt, true);
+#endif
+#ifdef DEM_HAS_TDEM
+    case Method::TDEM: return run_toroidal(pb, opt, false);
+    case Method::TOROIDAL_PARAMETERIZATION: return run_toroidal(pb, opt, true);
 #endif
     default: break;
   }
@@ -204,6 +325,15 @@ bool method_available(Method m)
     case Method::SPHERICAL_CONFORMAL: return true;
 #ifdef DEM_HAS_SDEM
     case Method::SDEM: case Method::LSDEM: return true;
+#endif
+#ifdef DEM_HAS_ELLIPSOIDAL_CONFORMAL
+    case Method::ELLIPSOIDAL_CONFORMAL: case Method::ELLIPSOIDAL_QUASICONFORMAL: return true;
+#endif
+#if defined(DEM_HAS_EDEM) && defined(DEM_HAS_ELLIPSOIDAL_CONFORMAL)
+    case Method::EDEM: case Method::EDEQ: return true;
+#endif
+#ifdef DEM_HAS_TDEM
+    case Method::TDEM: case Method::TOROIDAL_PARAMETERIZATION: return true;
 #endif
     default: return false;
   }
@@ -292,6 +422,7 @@ int main(int argc, char** argv)
     std::string error;
     const Parse_status s = parse_command_line(argc, argv, opt, error);
     if(s == Parse_status::HELP) { std::cout << usage_text(); return 0; }
+    if(s == Parse_status::VERSION) { std::cout << version_text() << std::endl; return 0; }
     if(s == Parse_status::ERROR) {
       std::cerr << "dem: " << error << "\n(dem --help prints the usage)\n";
       return 2;
@@ -324,6 +455,7 @@ int main(int argc, char** argv)
   mi.X = &pb.X; mi.F = &pb.F; mi.Y = &run.Y;
   mi.initial = run.Y0.size() ? &run.Y0 : &pb.X;
   mi.population = &pb.population;
+  mi.radii_count = domain_of(opt.method) == Domain::TORUS ? 2 : 3;
   std::vector<Eigen::Index> landmark_index;
   DI::Matrix targets;
   if(!pb.landmarks.empty()) {

@@ -92,6 +92,16 @@ struct Options
   std::optional<std::size_t> max_iterations;
 };
 
+/// The build: which default sparse solver the library was compiled with.
+inline std::string version_text()
+{
+#ifdef CGAL_DEM_USE_CHOLMOD
+  return "dem (Density_equalizing_maps), sparse solver: CHOLMOD supernodal LLT";
+#else
+  return "dem (Density_equalizing_maps), sparse solver: Eigen SimplicialLDLT";
+#endif
+}
+
 inline std::string usage_text()
 {
   return
@@ -111,11 +121,11 @@ inline std::string usage_text()
     "  --output FILE              the mapped mesh (same connectivity, vertices on the domain)\n"
     "  --metrics FILE             JSON metrics; a one-line summary always goes to stdout\n"
     "  --quiet                    no progress messages on stderr\n"
-    "  --help\n"
+    "  --help, --version          usage / the build's sparse solver\n"
     "exit status: 0 done, 2 usage error, 3 invalid input, 4 no fold-over-free map (no output written)\n";
 }
 
-enum class Parse_status { OK, HELP, ERROR };
+enum class Parse_status { OK, HELP, VERSION, ERROR };
 
 namespace internal {
 
@@ -133,6 +143,8 @@ inline Parse_status parse_command_line(int argc, char** argv, Options& opt, std:
   std::vector<std::string> args(argv + 1, argv + argc);
   for(const std::string& a : args)
     if(a == "--help" || a == "-h") return Parse_status::HELP;
+  for(const std::string& a : args)
+    if(a == "--version") return Parse_status::VERSION;
   std::vector<std::string> positional;
   std::vector<std::string> seen;
   for(std::size_t i = 0; i < args.size(); ++i) {
@@ -240,7 +252,10 @@ inline Parse_status parse_command_line(int argc, char** argv, Options& opt, std:
     error = std::string("method ") + method_name(m) + " needs --landmarks FILE";
     return Parse_status::ERROR;
   }
-  if(m == Method::EDEM && !opt.radii) { error = "method edem needs --radii A B C"; return Parse_status::ERROR; }
+  if((m == Method::EDEM || m == Method::EDEQ) && !opt.radii) {
+    error = std::string("method ") + method_name(m) + " needs --radii A B C";
+    return Parse_status::ERROR;
+  }
   if((m == Method::TDEM || m == Method::TOROIDAL_PARAMETERIZATION) && !opt.torus) {
     error = std::string("method ") + method_name(m) + " needs --torus R r";
     return Parse_status::ERROR;

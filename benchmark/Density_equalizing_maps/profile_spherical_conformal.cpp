@@ -1,0 +1,89 @@
+// Copyright (c) 2026 Density_equalizing_maps contributors.
+// This file is part of Density_equalizing_maps, a third-party CGAL package.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Where the time of the spherical conformal map goes: times the stages of
+// spherical_conformal_map() (validation, operators, the harmonic solve, the
+// south-chart LBS, the exact fold-over count) separately, minimum of R runs.
+//
+// usage: profile_spherical_conformal MESH [R=5]
+
+#include <CGAL/Density_equalizing_maps/spherical_conformal_map.h>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/IO/polygon_soup_io.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <functional>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace DI = CGAL::Density_equalizing_maps::internal;
+typedef CGAL::Exact_predicates_inexact_constructions_kernel::Point_3 Point;
+
+namespace {
+
+double best_of(int repeats, const std::function<void()>& f)
+{
+  double best = std::numeric_limits<double>::infinity();
+  for(int r = 0; r < repeats; ++r) {
+    const auto t0 = std::chrono::steady_clock::now();
+    f();
+    best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  }
+  return best;
+}
+
+} // namespace
+
+int main(int argc, char** argv)
+{
+  if(argc < 2) { std::fprintf(stderr, "usage: profile_spherical_conformal MESH [R=5]\n"); return 2; }
+  const int R = argc > 2 ? std::max(1, std::atoi(argv[2])) : 5;
+  std::vector<Point> points;
+  std::vector<std::vector<std::size_t>> polygons;
+  if(!CGAL::IO::read_polygon_soup(argv[1], points, polygons)) { std::fprintf(stderr, "cannot read %s\n", argv[1]); return 3; }
+  DI::Matrix X(points.size(), 3);
+  DI::Index_matrix F(polygons.size(), 3);
+  for(std::size_t i = 0; i < points.size(); ++i) X.row(i) << points[i].x(), points[i].y(), points[i].z();
+  for(std::size_t k = 0; k < polygons.size(); ++k)
+    for(int c = 0; c < 3; ++c) F(k, c) = int(polygons[k][c]);
+
+  const auto solver = DI::make_spd_solver(CGAL::Density_equalizing_maps::Default_sparse_solver_traits());
+  std::printf("%s: %ld vertices, %ld faces, best of %d runs\n", argv[1], long(X.rows()), long(F.rows()), R);
+#ifdef CGAL_DEM_USE_CHOLMOD
+  std::printf("solver: CHOLMOD supernodal LLT\n");
+#else
+  std::printf("solver: Eigen SimplicialLDLT\n");
+#endif
+  const double t_validate = best_of(R, [&] { DI::validate_closed_surface(X, F, 2, 4); });
+  const double t_regular = best_of(R, [&] { (void)DI::most_regular_face(X, F); });
+  DI::Sparse_matrix L;
+  const double t_laplacian = best_of(R, [&] { L = DI::cotangent_laplacian(X, F); });
+  const Eigen::Index t = DI::most_regular_face(X, F);
+  const DI::Complex corners[3] = {DI::Complex(0, 0), DI::Complex(1, 0), DI::Complex(0.5, 0.8)};
+  DI::Complex_vector z;
+  const double t_harmonic = best_of(R, [&] {
+    auto s = solver->clone();
+    DI::punctured_harmonic_map(L, F, t, corners, *s, z);
+  });
+  DI::Flash_result flash;
+  const double t_flash = best_of(R, [&] { flash = DI::flash_spherical_map(X, F, *solver); });
+  const double t_folds = best_of(R, [&] { (void)DI::count_inverted_faces_about_center(flash.S, F); });
+  const double t_mobius = best_of(std::min(R, 2), [&] { (void)DI::mobius_area_correction(X, F, flash.S); });
+
+  std::printf("  validate_closed_surface        %8.4f s\n", t_validate);
+  std::printf("  most_regular_face              %8.4f s\n", t_regular);
+  std::printf("  cotangent_laplacian            %8.4f s\n", t_laplacian);
+  std::printf("  harmonic map (Dirichlet, factor, solve) %8.4f s\n", t_harmonic);
+  std::printf("  flash_spherical_map (total)    %8.4f s  -> south LBS + lifting ~ %.4f s\n", t_flash,
+              t_flash - t_regular - t_laplacian - t_harmonic);
+  std::printf("  exact fold-over count          %8.4f s\n", t_folds);
+  std::printf("  Moebius area correction        %8.4f s (only with --mobius)\n", t_mobius);
+  std::printf("  sum without Moebius            %8.4f s\n", t_validate + t_flash + t_folds);
+  return 0;
+}
