@@ -33,6 +33,7 @@ enum optimize_radii_t         { optimize_radii };
 enum torus_radii_t            { torus_radii };
 enum cut_edges_t              { cut_edges };
 enum flat_torus_coordinates_t { flat_torus_coordinates };
+enum flat_torus_offsets_t     { flat_torus_offsets };
 enum progress_callback_t      { progress_callback };
 } // namespace internal_np
 
@@ -62,6 +63,7 @@ CGAL_DEM_ADD_NAMED_PARAMETER(optimize_radii_t,     optimize_radii)
 CGAL_DEM_ADD_NAMED_PARAMETER(torus_radii_t,        torus_radii)
 CGAL_DEM_ADD_NAMED_PARAMETER(cut_edges_t,          cut_edges)
 CGAL_DEM_ADD_NAMED_PARAMETER(flat_torus_coordinates_t, flat_torus_coordinates)
+CGAL_DEM_ADD_NAMED_PARAMETER(flat_torus_offsets_t,     flat_torus_offsets)
 CGAL_DEM_ADD_NAMED_PARAMETER(progress_callback_t,  progress_callback)
 #undef CGAL_DEM_ADD_NAMED_PARAMETER
 
