@@ -1,0 +1,209 @@
+// Copyright (c) 2026 Density_equalizing_maps contributors.
+// This file is part of Density_equalizing_maps, a third-party CGAL package.
+// SPDX-License-Identifier: GPL-3.0-or-later
+
+#ifndef CGAL_DENSITY_EQUALIZING_MAPS_INTERNAL_TORUS_DOMAIN_H
+#define CGAL_DENSITY_EQUALIZING_MAPS_INTERNAL_TORUS_DOMAIN_H
+
+// The flat torus as a domain of the density-equalizing engine (TDEM, paper
+// 002; ALGORITHMS.md 10.2 and 10.5). The state x is n x 2: one point (u, v)
+// per vertex of the closed mesh; the per-corner lattice offsets live here and
+// stay fixed during a run (no wrap inside the loop, so the engine's copies of
+// x are always consistent with them; the caller wraps at the end).
+//
+// Diffusion, gradients, velocity and face-to-vertex averaging use the planar
+// layout; only the density carries the torus geometry, through the chordal
+// area of phi(layout). The velocity is planar already (tangent_part is the
+// identity). A step that inverts layout triangles is repaired by the periodic
+// Linear Beltrami Solver, or the step is halved.
+
+#include <CGAL/Density_equalizing_maps/internal/density_engine.h>
+#include <CGAL/Density_equalizing_maps/internal/flat_torus.h>
+
+#include <memory>
+
+namespace CGAL {
+namespace Density_equalizing_maps {
+namespace internal {
+
+class Torus_domain
+{
+public:
+  /// `u0` and `offsets` are the initial (fold-free) layout; every layout
+  /// triangle must have the orientation `orientation` (+1 or -1).
+  Torus_domain(const Index_matrix& F, const Matrix& u0, const Offset_matrix& offsets, const Torus_radii& radii,
+               int orientation, std::unique_ptr<Spd_solver> repair_solver)
+    : m_F(F), m_Fu(unrolled_faces(F.rows())), m_offsets(offsets), m_radii(radii), m_orientation(orientation),
+      m_assembler(F, u0.rows()), m_repair_solver(std::move(repair_solver))
+  {
+    m_P0 = unrolled_layout(u0, F, offsets, radii);
+  }
+
+  Eigen::Index dimension() const { return 2; }
+  const Index_matrix& faces() const { return m_F; }
+  const Face_block_assembler& assembler() const { return m_assembler; }
+  const Offset_matrix& offsets() const { return m_offsets; }
+  const Torus_radii& radii() const { return m_radii; }
+  int orientation() const { return m_orientation; }
+
+  /// The layout of x with the domain's offsets (3m x 2, see flat_torus.h).
+  Matrix layout(const Matrix& x) const { return unrolled_layout(x, m_F, m_offsets, m_radii); }
+
+  Vector mass(const Matrix& x) const
+  {
+    const Vector a = face_areas(layout(x), m_Fu);
+    Vector A = Vector::Zero(x.rows());
+    for(Eigen::Index k = 0; k < m_F.rows(); ++k)
+      for(int c = 0; c < 3; ++c) A[m_F(k, c)] += a[k] / 3.;
+    return A;
+  }
+
+  Matrix stiffness_blocks(const Matrix& x) const { return cotangent_stiffness_blocks(layout(x), m_Fu); }
+
+  Sparse_matrix face_to_vertex(const Matrix& x) const
+  {
+    return internal::face_to_vertex(face_areas(layout(x), m_Fu), m_F, x.rows());
+  }
+
+  Matrix face_gradient(const Matrix& x, const Vector& g) const
+  {
+    return planar_face_gradient(layout(x), m_Fu, unrolled_values(g, m_F));
+  }
+
+  /// Chordal area of the image of each face on the torus (paper eq. 11).
+  Vector density_area(const Matrix& x) const { return face_areas(torus_images(x, m_radii), m_F); }
+
+  Matrix tangent_part(const Matrix&, const Matrix& v) const { return v; }
+
+  /// Faces whose exact layout orientation differs from the initial one.
+  std::vector<char> flagged_faces(const Matrix& x, std::size_t& count) const
+  {
+    const std::vector<int> s = layout_orientations(layout(x));
+    std::vector<char> flagged(s.size(), 0);
+    count = 0;
+    for(std::size_t k = 0; k < s.size(); ++k)
+      if(s[k] != m_orientation) { flagged[k] = 1; ++count; }
+    return flagged;
+  }
+
+  std::size_t fold_overs(const Matrix& x) const { return count_layout_fold_overs(layout(x), m_orientation); }
+
+  /// x_new = x + dt d; if layout triangles flip, periodic LBS repair (at most
+  /// `max_repair_solves` solves, |mu| of flipped faces truncated to 0.9), else
+  /// halve dt. Returns false if no fold-free step was found.
+  template <class Statistics>
+  bool advance(const Matrix& x, const Matrix& d, double dt, Matrix& x_new, Statistics& stats)
+  {
+    for(int halving = 0; halving <= m_max_halvings; ++halving) {
+      Matrix y = x + dt * d;
+      std::size_t count = 0;
+      std::vector<char> flagged = flagged_faces(y, count);
+      if(count == 0) { x_new = y; return true; }
+      for(int solve = 0; solve < m_max_repair_solves && count > 0; ++solve) {
+        if(!repair(y, flagged)) break;
+        ++stats.repairs;
+        flagged = flagged_faces(y, count);
+      }
+      if(count == 0) { x_new = y; return true; }
+      dt *= 0.5;
+      ++stats.halvings;
+    }
+    return false;
+  }
+
+  /// One periodic LBS solve: mu = BC(initial layout -> layout of y), truncated
+  /// on flagged faces, one vertex on no flagged face pinned where it is.
+  bool repair(Matrix& y, const std::vector<char>& flagged)
+  {
+    Complex_vector mu = beltrami_coefficient(m_P0, layout(y), m_Fu);
+    for(Eigen::Index k = 0; k < mu.size(); ++k)
+      if(flagged[k] || !(std::abs(mu[k]) < 1)) {
+        const double a = std::abs(mu[k]);
+        mu[k] = a > 0 && std::isfinite(a) ? mu[k] * (m_truncation / a) : Complex(m_truncation, 0);
+      }
+    std::vector<char> on_flagged(static_cast<std::size_t>(y.rows()), 0);
+    for(Eigen::Index k = 0; k < m_F.rows(); ++k)
+      if(flagged[k])
+        for(int c = 0; c < 3; ++c) on_flagged[m_F(k, c)] = 1;
+    int pin = 0;
+    while(pin < y.rows() && on_flagged[pin]) ++pin;
+    if(pin == y.rows()) return false;
+    Matrix w;
+    if(!periodic_linear_beltrami_solve(m_P0, m_Fu, m_F, m_offsets, m_radii, mu, pin, y.row(pin).transpose(),
+                                       m_assembler, *m_repair_solver, w))
+      return false;
+    y = w;
+    return true;
+  }
+
+  void set_max_repair_solves(int n) { m_max_repair_solves = n; }
+
+private:
+  Index_matrix m_F, m_Fu;
+  Offset_matrix m_offsets;
+  Torus_radii m_radii;
+  int m_orientation;
+  Face_block_assembler m_assembler;
+  std::unique_ptr<Spd_solver> m_repair_solver;
+  Matrix m_P0;
+  int m_max_repair_solves = 5;
+  int m_max_halvings = 20;
+  double m_truncation = 0.9;
+};
+
+
+/// Outcome of a TDEM run on the flat torus.
+struct Toroidal_run
+{
+  Engine_result engine;
+  std::size_t fold_overs = 0;
+  Matrix u;              // final flat-torus coordinates, wrapped into the cell
+  Offset_matrix offsets; // matching corner offsets
+};
+
+/// Orientation (+1 / -1) of a flat-torus layout that covers the torus once with
+/// every triangle oriented alike; 0 otherwise (`what` then says why).
+inline int layout_orientation(const Matrix& u, const Index_matrix& F, const Offset_matrix& o, const Torus_radii& t,
+                              std::string& what)
+{
+  const Matrix P = unrolled_layout(u, F, o, t);
+  const double total = layout_signed_areas(P).sum();
+  if(!(std::abs(std::abs(total) - t.cell_area()) <= 1e-6 * t.cell_area())) {
+    what = "the mesh does not cover the torus exactly once (total signed flat-torus area " + std::to_string(total) +
+           ", period cell area " + std::to_string(t.cell_area()) + ")";
+    return 0;
+  }
+  const int s = total > 0 ? 1 : -1;
+  const std::size_t folds = count_layout_fold_overs(P, s);
+  if(folds > 0) {
+    what = "the mesh is not embedded in the torus: " + std::to_string(folds) +
+           " faces are inverted or degenerate in flat-torus coordinates";
+    return 0;
+  }
+  return s;
+}
+
+/// TDEM (paper 002) on the flat torus with the engine of density_engine.h:
+/// stops on sd/mean of the re-coupled vertex density; the result is wrapped
+/// into the cell [0, 2 pi R) x [-pi r, pi r).
+inline Toroidal_run run_toroidal_density_equalization(const Index_matrix& F, const Matrix& u0, const Offset_matrix& o0,
+                                                      const Torus_radii& t, int orientation, const Vector& population,
+                                                      Engine_options options, Spd_solver& solver)
+{
+  Toroidal_run run;
+  run.u = u0;
+  Torus_domain domain(F, u0, o0, t, orientation, solver.clone());
+  Density_flow flow;
+  options.stop_on_recoupled_density = true;
+  run.engine = run_density_equalization(domain, flow, run.u, population, options, solver);
+  run.fold_overs = domain.fold_overs(run.u);
+  run.offsets = o0;
+  wrap_into_cell(run.u, F, run.offsets, t);
+  return run;
+}
+
+} // namespace internal
+} // namespace Density_equalizing_maps
+} // namespace CGAL
+
+#endif // CGAL_DENSITY_EQUALIZING_MAPS_INTERNAL_TORUS_DOMAIN_H
