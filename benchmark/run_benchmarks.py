@@ -182,8 +182,7 @@ def main():
             extra = sidecar_arguments(method, None if a.no_sidecars else base, params)
             extra += a.extra.split() if a.extra else []
             cmd = [dem, method, path, "--quiet", "--metrics", metrics_path] + extra
-            print("$ " + " ".join(cmd[:3] + [os.path.relpath(x, ROOT) if os.path.isabs(x) else x for x in cmd[3:]]),
-                  flush=True)
+            print("$ " + " ".join(cmd), flush=True)
             mesh_runs = []
             for r in range(a.repeat):
                 code, wall, cpu, rss, m, stdout, stderr = run_once(cmd, metrics_path)
@@ -219,7 +218,7 @@ def main():
         w = csv.DictWriter(f, fieldnames=fields, extrasaction="ignore")
         w.writeheader()
         for row in runs:
-            w.writerow({k: json.dumps(v) if isinstance(v, list) else v for k, v in row.items()})
+            w.writerow({k: json.dumps(v) if isinstance(v, (list, bool)) else v for k, v in row.items()})
 
     def fmt(v, spec):
         return format(v, spec) if isinstance(v, (int, float)) else "-"

@@ -13,6 +13,10 @@
 // The input is read as a polygon soup and validated on index arrays before a
 // halfedge structure is built, so that non-manifold edges or open boundaries,
 // which a Surface_mesh cannot even store, are reported as invalid input.
+//
+// A method is compiled in when its public header exists (__has_include), so
+// the tool builds at every stage of the package; other methods answer "not
+// available in this build" (exit 2).
 
 #include "dem_support/dem_support.h"
 
@@ -21,7 +25,7 @@
 #include <CGAL/Density_equalizing_maps/spherical_density_equalizing_map.h>
 #define DEM_HAS_SDEM 1
 #endif
-#if __has_include(<CGAL/Density_equalizing_maps/ellipsoidal_conformal_map.h>)
+#if __has_include(<CGAL/Density_equalizing_maps/ellipsoidal_conformal_map.h>) && !defined(DEM_WITHOUT_ELLIPSOIDAL)
 #include <CGAL/Density_equalizing_maps/ellipsoidal_conformal_map.h>
 #define DEM_HAS_ELLIPSOIDAL_CONFORMAL 1
 #endif
