@@ -94,6 +94,11 @@ inline Flash_result flash_spherical_map(const Matrix& X, const Index_matrix& F, 
       throw Invalid_input("the harmonic and Tutte maps both failed: the mesh is not a valid genus-0 surface");
   }
 
+  // The harmonic map's factor is no longer needed: free it before the LBS
+  // factorization so that only one Cholesky factor is alive at a time (it is
+  // most of the peak memory, about 300 bytes per face).
+  solver.reset();
+
   // South step: quasi-conformal correction in the south chart, where the
   // north step's distortion (near the puncture) sits at the centre.
   std::vector<Eigen::Index> order(static_cast<std::size_t>(n));
