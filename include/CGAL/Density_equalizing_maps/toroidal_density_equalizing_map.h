@@ -66,6 +66,18 @@ void write_toroidal_outputs(const TriangleMesh& tm, const Mesh_arrays<TriangleMe
   }
 }
 
+/// The solver of the diffusion systems: warm-started conjugate gradients unless
+/// the user chose a `sparse_linear_solver` (then that one, nullptr here).
+template <class NamedParameters>
+std::unique_ptr<Spd_solver> diffusion_solver_from_parameters(const NamedParameters&)
+{
+  using CGAL::parameters::is_default_parameter;
+  if constexpr(is_default_parameter<NamedParameters, internal_np::sparse_linear_solver_t>::value)
+    return std::unique_ptr<Spd_solver>(new Warm_started_cg_solver());
+  else
+    return nullptr;
+}
+
 inline void fill_toroidal_report(const Toroidal_run& run, const Torus_radii& t, Map_report& report)
 {
   fill_report(run.engine, report);
@@ -143,8 +155,15 @@ inline void fill_toroidal_report(const Toroidal_run& run, const Torus_radii& t, 
 ///     \cgalParamDescription{an optional writable halfedge property map that receives the integer lattice offset \f$ t_h = (t_u, t_v) \f$ of each halfedge \f$ h = (i \to j) \f$ of a face: the image of the halfedge in the flat torus is the segment from \f$ (u_i, v_i) \f$ to \f$ (u_j + 2\pi R\, t_u,\ v_j + 2\pi r\, t_v) \f$; \f$ t_{opposite(h)} = -t_h \f$ and the offsets sum to zero around every face. Value type: brace-constructible from two `int`s (e.g. `std::array<int,2>`, `std::pair<int,int>`)}
 ///     \cgalParamDefault{none}
 ///   \cgalParamNEnd
-///   \cgalParamNBegin{vertex_point_map, vertex_index_map, sparse_linear_solver}
+///   \cgalParamNBegin{vertex_point_map, vertex_index_map}
 ///     \cgalParamDescription{as for `spherical_conformal_map()`}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{sparse_linear_solver}
+///     \cgalParamDescription{a model of `SparseLinearAlgebraWithFactorTraits_d` for the SPD systems}
+///     \cgalParamDefault{`Default_sparse_solver_traits` for the harmonic map and the Beltrami repairs, and
+///       Jacobi-preconditioned conjugate gradients, warm-started from the previous iteration, for the diffusion
+///       steps (a mass matrix plus a small multiple of the Laplacian: well conditioned). If given, this solver is
+///       used for every system.}
 ///   \cgalParamNEnd
 /// \cgalNamedParamsEnd
 ///
@@ -168,8 +187,9 @@ Map_report toroidal_density_equalizing_map(const TriangleMesh& tm, VertexPointOu
   const int orientation = internal::layout_orientation(u, a.F, o, t, why);
   if(orientation == 0) throw Invalid_input(why);
   const auto solver = internal::solver_from_parameters(np);
-  const internal::Toroidal_run run =
-    internal::run_toroidal_density_equalization(a.F, u, o, t, orientation, population, options, *solver);
+  const auto diffusion_solver = internal::diffusion_solver_from_parameters(np);
+  const internal::Toroidal_run run = internal::run_toroidal_density_equalization(
+    a.F, u, o, t, orientation, population, options, *solver, diffusion_solver.get());
   Map_report report;
   internal::fill_toroidal_report(run, t, report);
   internal::write_toroidal_outputs(tm, a, run.u, run.offsets, t, torus_map, np);
@@ -248,8 +268,9 @@ Map_report toroidal_parameterization(const TriangleMesh& tm, VertexPointOutMap t
     report.radii = {t.R, t.r};
     return report;
   }
+  const auto diffusion_solver = internal::diffusion_solver_from_parameters(np);
   const internal::Toroidal_run run = internal::run_toroidal_density_equalization(
-    a.F, initial.u, initial.offsets, t, 1, population, options, *solver);
+    a.F, initial.u, initial.offsets, t, 1, population, options, *solver, diffusion_solver.get());
   Map_report report;
   internal::fill_toroidal_report(run, t, report);
   report.used_tutte_fallback = initial.used_uniform_weights;

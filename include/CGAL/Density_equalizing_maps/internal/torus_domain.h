@@ -20,11 +20,51 @@
 #include <CGAL/Density_equalizing_maps/internal/density_engine.h>
 #include <CGAL/Density_equalizing_maps/internal/flat_torus.h>
 
+#include <Eigen/IterativeLinearSolvers>
+
 #include <memory>
 
 namespace CGAL {
 namespace Density_equalizing_maps {
 namespace internal {
+
+
+/// Solver of the diffusion systems (A + dt L) rho+ = A rho of the flat torus:
+/// Jacobi-preconditioned conjugate gradients started from the previous
+/// solution. The matrix is a mass matrix plus a small multiple of the
+/// Laplacian (condition number ~ 1 + dt lambda_max), and the density changes
+/// little between iterations, so a few dozen matrix-vector products replace a
+/// sparse factorization per iteration.
+class Warm_started_cg_solver : public Spd_solver
+{
+public:
+  explicit Warm_started_cg_solver(double tolerance = 1e-10) : m_tolerance(tolerance) {}
+  bool factor(const Sparse_matrix& A) override
+  {
+    m_cg.setTolerance(m_tolerance);
+    m_cg.setMaxIterations(std::max<Eigen::Index>(1000, A.rows()));
+    m_cg.compute(A);
+    return m_cg.info() == Eigen::Success;
+  }
+  bool solve(const Matrix& B, Matrix& X) override
+  {
+    const bool warm = m_last.rows() == B.rows() && m_last.cols() == B.cols();
+    X.resize(B.rows(), B.cols());
+    for(Eigen::Index c = 0; c < B.cols(); ++c) {
+      X.col(c) = warm ? Vector(m_cg.solveWithGuess(B.col(c), m_last.col(c))) : Vector(m_cg.solve(B.col(c)));
+      if(m_cg.info() != Eigen::Success) return false;
+    }
+    m_last = X;
+    return X.allFinite();
+  }
+  std::unique_ptr<Spd_solver> clone() const override
+  { return std::unique_ptr<Spd_solver>(new Warm_started_cg_solver(m_tolerance)); }
+
+private:
+  Eigen::ConjugateGradient<Sparse_matrix, Eigen::Lower | Eigen::Upper> m_cg;
+  Matrix m_last;
+  double m_tolerance;
+};
 
 class Torus_domain
 {
@@ -47,27 +87,49 @@ public:
   int orientation() const { return m_orientation; }
 
   /// The layout of x with the domain's offsets (3m x 2, see flat_torus.h).
-  Matrix layout(const Matrix& x) const { return unrolled_layout(x, m_F, m_offsets, m_radii); }
+  const Matrix& layout(const Matrix& x) const { return cached(x).P; }
 
   Vector mass(const Matrix& x) const
   {
-    const Vector a = face_areas(layout(x), m_Fu);
+    const Vector& a = cached(x).area;
     Vector A = Vector::Zero(x.rows());
     for(Eigen::Index k = 0; k < m_F.rows(); ++k)
       for(int c = 0; c < 3; ++c) A[m_F(k, c)] += a[k] / 3.;
     return A;
   }
 
-  Matrix stiffness_blocks(const Matrix& x) const { return cotangent_stiffness_blocks(layout(x), m_Fu); }
+  Matrix stiffness_blocks(const Matrix& x) const { return cotangent_stiffness_blocks(cached(x).P, m_Fu); }
 
+  /// Area-weighted averaging M (n x m), written straight into compressed
+  /// column storage: column k holds the three corners of face k.
   Sparse_matrix face_to_vertex(const Matrix& x) const
   {
-    return internal::face_to_vertex(face_areas(layout(x), m_Fu), m_F, x.rows());
+    const Vector& a = cached(x).area;
+    const Eigen::Index n = x.rows(), m = m_F.rows();
+    Vector total = Vector::Zero(n);
+    for(Eigen::Index k = 0; k < m; ++k)
+      for(int c = 0; c < 3; ++c) total[m_F(k, c)] += a[k];
+    Sparse_matrix M(n, m);
+    M.resizeNonZeros(3 * m);
+    int* outer = M.outerIndexPtr();
+    int* inner = M.innerIndexPtr();
+    double* value = M.valuePtr();
+    for(Eigen::Index k = 0; k < m; ++k) {
+      int r[3] = {m_F(k, 0), m_F(k, 1), m_F(k, 2)};
+      std::sort(r, r + 3);
+      outer[k] = int(3 * k);
+      for(int c = 0; c < 3; ++c) {
+        inner[3 * k + c] = r[c];
+        value[3 * k + c] = a[k] / total[r[c]];
+      }
+    }
+    outer[m] = int(3 * m);
+    return M;
   }
 
   Matrix face_gradient(const Matrix& x, const Vector& g) const
   {
-    return planar_face_gradient(layout(x), m_Fu, unrolled_values(g, m_F));
+    return planar_face_gradient(cached(x).P, m_Fu, unrolled_values(g, m_F));
   }
 
   /// Chordal area of the image of each face on the torus (paper eq. 11).
@@ -139,6 +201,24 @@ public:
   void set_max_repair_solves(int n) { m_max_repair_solves = n; }
 
 private:
+  struct Layout_cache
+  {
+    Matrix x, P;  // the state and its layout
+    Vector area;  // unsigned layout areas
+  };
+  /// Layout and areas of x, recomputed only when x changes (the engine asks
+  /// for several operators on the same state).
+  const Layout_cache& cached(const Matrix& x) const
+  {
+    if(m_cache.x.rows() != x.rows() || m_cache.x.cols() != x.cols() || m_cache.x != x) {
+      m_cache.x = x;
+      m_cache.P = unrolled_layout(x, m_F, m_offsets, m_radii);
+      m_cache.area = layout_signed_areas(m_cache.P).cwiseAbs();
+    }
+    return m_cache;
+  }
+
+  mutable Layout_cache m_cache;
   Index_matrix m_F, m_Fu;
   Offset_matrix m_offsets;
   Torus_radii m_radii;
@@ -188,14 +268,16 @@ inline int layout_orientation(const Matrix& u, const Index_matrix& F, const Offs
 /// into the cell [0, 2 pi R) x [-pi r, pi r).
 inline Toroidal_run run_toroidal_density_equalization(const Index_matrix& F, const Matrix& u0, const Offset_matrix& o0,
                                                       const Torus_radii& t, int orientation, const Vector& population,
-                                                      Engine_options options, Spd_solver& solver)
+                                                      Engine_options options, Spd_solver& solver,
+                                                      Spd_solver* diffusion_solver = nullptr)
 {
   Toroidal_run run;
   run.u = u0;
   Torus_domain domain(F, u0, o0, t, orientation, solver.clone());
   Density_flow flow;
   options.stop_on_recoupled_density = true;
-  run.engine = run_density_equalization(domain, flow, run.u, population, options, solver);
+  run.engine = run_density_equalization(domain, flow, run.u, population, options,
+                                        diffusion_solver ? *diffusion_solver : solver);
   run.fold_overs = domain.fold_overs(run.u);
   run.offsets = o0;
   wrap_into_cell(run.u, F, run.offsets, t);
