@@ -211,6 +211,19 @@ void check_output(const std::string& file, const Soup& in, double (*domain_resid
   check(worst < 1e-9, what + ": vertices on the domain (worst residual " + std::to_string(worst) + ")");
 }
 
+double torus_3_1_residual(const Point& p)
+{
+  const double x = CGAL::to_double(p.x()), y = CGAL::to_double(p.y()), z = CGAL::to_double(p.z());
+  const double d = std::sqrt(x * x + y * y) - 3;
+  return std::abs(std::sqrt(d * d + z * z) - 1);
+}
+
+double ellipsoid_2_1_1_residual(const Point& p)
+{
+  const double x = CGAL::to_double(p.x()) / 2, y = CGAL::to_double(p.y()), z = CGAL::to_double(p.z());
+  return std::abs(std::sqrt(x * x + y * y + z * z) - 1);
+}
+
 double unit_sphere_residual(const Point& p) { return std::abs(std::sqrt(CGAL::to_double(p.x() * p.x() + p.y() * p.y() + p.z() * p.z())) - 1); }
 
 } // namespace
@@ -321,6 +334,33 @@ int main()
             "sdem lowers the density variance");
       check(pt.get<std::string>("iterations", "null") != "null", "sdem reports iterations");
       check_output(output, sphere, unit_sphere_residual, "sdem output");
+    }
+  }
+
+  // --- ellipsoid and torus methods, when available
+  {
+    Result r = dem("ellipsoidal-conformal \"" + sphere_off + "\" --radii 2 1 1 --output \"" + output + "\" --metrics \"" +
+                   metrics + "\"");
+    if(contains(r.err, "not available")) std::cerr << "note: ellipsoidal-conformal not available in this build\n";
+    else if(expect(r, 0, "ellipsoidal-conformal on an icosphere")) {
+      auto pt = check_metrics(metrics, "ellipsoidal-conformal", sphere.V.size(), sphere.T.size());
+      check(pt.get_child_optional("radii") && pt.get_child("radii").size() == 3, "ellipsoidal-conformal radii");
+      check_output(output, sphere, ellipsoid_2_1_1_residual, "ellipsoidal-conformal output");
+    }
+    expect(dem("edem \"" + sphere_off + "\""), 2, "edem without --radii", "--radii");
+
+    const Soup ring = torus(3, 1, 24, 12);
+    const std::string ring_off = write_off("ring.off", ring);
+    expect(dem("tdem \"" + ring_off + "\""), 2, "tdem without --torus", "--torus");
+    r = dem("tdem \"" + ring_off + "\" --torus 3 1 --output \"" + output + "\" --metrics \"" + metrics + "\"");
+    if(contains(r.err, "not available")) std::cerr << "note: tdem not available in this build\n";
+    else {
+      if(expect(r, 0, "tdem on a torus")) {
+        check_metrics(metrics, "tdem", ring.V.size(), ring.T.size());
+        check_output(output, ring, torus_3_1_residual, "tdem output");
+      }
+      expect(dem("tdem \"" + sphere_off + "\" --torus 3 1"), 3, "genus-0 mesh for a torus method", "genus");
+      expect(dem("tdem \"" + ring_off + "\" --torus 1 3"), 3, "R < r");
     }
   }
 
