@@ -205,6 +205,8 @@ Map_report landmark_aligned_spherical_density_equalizing_map(const TriangleMesh&
     throw Invalid_input("the weights alpha, beta, gamma must be non-negative");
 
   const auto solver = internal::solver_from_parameters(np);
+  if(!flow.prepare(a.X, a.F, options.time_step, *solver))
+    throw Invalid_input("the harmonic-energy system of the input mesh could not be factored");
   internal::Matrix x = internal::initial_spherical_map(a, np, *solver);
   internal::Ellipsoid_domain sphere(a.F, x, Eigen::Vector3d::Ones(), truncation, *solver);
   const internal::Engine_result r = internal::run_density_equalization(sphere, flow, x, population, options, *solver);
