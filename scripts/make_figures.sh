@@ -64,8 +64,8 @@ fig_toroidal_density_equalizing_map() {
   R=$(sed -n 's/^R=//p' "$DATA/tdem_torus_1.params.txt"); r=$(sed -n 's/^r=//p' "$DATA/tdem_torus_1.params.txt")
   map_mesh tdem "$m" "$WORK/tdem1.off" --population "$p" --torus "$R" "$r" || return 0
   "${RENDER[@]}" "$FIG/toroidal_density_equalizing_map.png" --size 300 \
-    "$m,density=$p,az=30,el=45" "$WORK/tdem1.off,density=$p,area_of=$m,az=30,el=45" \
-    "$WORK/tdem1.off,density=$p,az=30,el=45"
+    "$m,density=$p,az=30,el=45,edges=1" "$WORK/tdem1.off,density=$p,area_of=$m,az=30,el=45,edges=1" \
+    "$WORK/tdem1.off,density=$p,az=30,el=45,edges=1"
 }
 
 ALL=(spherical_conformal_map spherical_density_equalizing_map

@@ -22,6 +22,7 @@ PANEL is `mesh.off` followed by comma-separated options:
   look=dense        view from the direction of the densest 5% of the faces (density=;
                     densities from the areas of look_ref=mesh.off, else area_of=, else this mesh)
   up=x|y|z          the axis drawn vertically (default z)
+  edges=1           draw the mesh edges (shows how a map deforms a regular mesh)
   color=RRGGBB      uniform colour (default light grey)
   range=R           half-width of the log colour scale (default 1.5; values=: automatic)
 """
@@ -178,6 +179,8 @@ def render_panel(img, depth, W, H, x0, pw, V, F, colors, opts):
     ext = max(max(xs) - min(xs), max(ys) - min(ys)) or 1.0
     s = 0.92 * min(pw, H) / ext
     S = [(x0 + 0.5 * pw + s * (p[0] - cx), 0.5 * H - s * (p[1] - cy), p[2]) for p in P]
+    edges = opts.get('edges', '0') not in ('0', 'no', 'false')
+    edge_width = 1.0  # in supersampled pixels
     light = (-0.45, 0.55, -0.70)  # towards the viewer, from the upper left
     ln = norm(light)
     light = tuple(c / ln for c in light)
@@ -195,6 +198,13 @@ def render_panel(img, depth, W, H, x0, pw, V, F, colors, opts):
         minx, maxx = max(int(min(a[0], b[0], c[0])), x0), min(int(max(a[0], b[0], c[0])) + 1, x0 + pw - 1)
         miny, maxy = max(int(min(a[1], b[1], c[1])), 0), min(int(max(a[1], b[1], c[1])) + 1, H - 1)
         inv = 1.0 / area2
+        if edges:
+            # distance (pixels) from a point to the edge opposite corner m = w_m * |area2| / |edge|
+            la = math.hypot(c[0] - b[0], c[1] - b[1]) or 1.0
+            lb = math.hypot(a[0] - c[0], a[1] - c[1]) or 1.0
+            lc = math.hypot(b[0] - a[0], b[1] - a[1]) or 1.0
+            ka, kb, kc = -area2 / la, -area2 / lb, -area2 / lc
+            dark = bytes(int(v * 0.55) for v in rgb)
         for py in range(miny, maxy + 1):
             fy = py + 0.5
             row = py * W
@@ -209,7 +219,10 @@ def render_panel(img, depth, W, H, x0, pw, V, F, colors, opts):
                 q = row + px
                 if z < depth[q]:
                     depth[q] = z
-                    img[3 * q:3 * q + 3] = rgb
+                    if edges and min(w0 * ka, w1 * kb, w2 * kc) < edge_width:
+                        img[3 * q:3 * q + 3] = dark
+                    else:
+                        img[3 * q:3 * q + 3] = rgb
 
 
 def write_png(path, W, H, img):
