@@ -3,6 +3,7 @@
 # then configures and builds the package into build/ (Release).
 #
 #   bash scripts/setup.sh            # deps + configure + build everything
+#   bash scripts/setup.sh TARGET...  # deps + configure + build only these targets
 #   DEM_SKIP_DEPS=1 bash scripts/setup.sh   # do not touch the system packages
 #   DEM_BUILD_DIR=/tmp/b bash scripts/setup.sh  # other build directory
 #
@@ -49,8 +50,10 @@ configure_and_build() {
   if [[ ! -f "$BUILD_DIR/CMakeCache.txt" ]]; then
     cmake -S "$ROOT" -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release
   fi
-  cmake --build "$BUILD_DIR" -j"$JOBS"
+  local targets=()
+  if (( $# > 0 )); then targets=(--target "$@"); fi
+  cmake --build "$BUILD_DIR" -j"$JOBS" "${targets[@]}"
 }
 
 install_missing_packages
-configure_and_build
+configure_and_build "$@"
