@@ -1,0 +1,208 @@
+// Copyright (c) 2026 Density_equalizing_maps contributors.
+// This file is part of Density_equalizing_maps, a third-party CGAL package.
+// SPDX-License-Identifier: GPL-3.0-or-later
+
+#ifndef CGAL_DENSITY_EQUALIZING_MAPS_ELLIPSOIDAL_DENSITY_EQUALIZING_MAP_H
+#define CGAL_DENSITY_EQUALIZING_MAPS_ELLIPSOIDAL_DENSITY_EQUALIZING_MAP_H
+
+#include <CGAL/Density_equalizing_maps/Map_report.h>
+#include <CGAL/Density_equalizing_maps/ellipsoidal_conformal_map.h>
+#include <CGAL/Density_equalizing_maps/parameters.h>
+#include <CGAL/Density_equalizing_maps/internal/ellipsoid_domain.h>
+#include <CGAL/Density_equalizing_maps/internal/engine_parameters.h>
+#include <CGAL/Density_equalizing_maps/internal/radii_search_flow.h>
+
+#include <boost/property_map/vector_property_map.hpp>
+
+namespace CGAL {
+namespace Density_equalizing_maps {
+namespace internal {
+
+/// The starting ellipsoidal map: the user's `initial_map`, else the
+/// ellipsoidal conformal map with the same radii. Either is projected radially
+/// onto the ellipsoid and must be bijective. If the conformal map is not, the
+/// spherical conformal map scaled by the radii is used (a linear image of a
+/// bijective spherical map, hence bijective).
+template <class TriangleMesh, class NamedParameters>
+Matrix initial_ellipsoidal_map(const TriangleMesh& tm, const Mesh_arrays<TriangleMesh>& a,
+                               const Eigen::Vector3d& radii, const NamedParameters& np, const Spd_solver& solver,
+                               std::string& note)
+{
+  using CGAL::parameters::get_parameter;
+  using CGAL::parameters::is_default_parameter;
+  Matrix x;
+  if constexpr(!is_default_parameter<NamedParameters, internal_np::initial_map_t>::value) {
+    x = read_points(a, get_parameter(np, internal_np::initial_map));
+    if(!x.allFinite()) throw Invalid_input("the initial map has non-finite coordinates");
+    project_to_ellipsoid(x, radii);
+    const std::size_t folds = count_inverted_faces_about_center(x, a.F);
+    if(folds > 0)
+      throw Invalid_input("the initial ellipsoidal map is not bijective: " + std::to_string(folds) +
+                          " fold-overs (exact count)");
+    return x;
+  } else {
+    typedef CGAL::Exact_predicates_inexact_constructions_kernel::Point_3 Point;
+    auto vim = CGAL::get_initialized_vertex_index_map(tm, np);
+    boost::vector_property_map<Point, decltype(vim)> fecm(a.vertices.size(), vim);
+    const std::array<double, 3> r = {radii[0], radii[1], radii[2]};
+    ellipsoidal_conformal_map(tm, fecm, parameters::combine(np, parameters::ellipsoid_radii(r)));
+    x = read_points(a, fecm);
+    project_to_ellipsoid(x, radii);
+    if(x.allFinite() && count_inverted_faces_about_center(x, a.F) == 0) return x;
+    note = "the ellipsoidal conformal map was not bijective; started from the scaled spherical conformal map. ";
+    x = Ellipsoid_domain::from_unit_sphere(flash_spherical_map(a.X, a.F, solver).S, radii);
+    return x;
+  }
+}
+
+template <class TriangleMesh, class NamedParameters>
+Eigen::Vector3d ellipsoid_radii_from_parameters(const Mesh_arrays<TriangleMesh>& a, const NamedParameters& np)
+{
+  using CGAL::parameters::get_parameter;
+  using CGAL::parameters::is_default_parameter;
+  Eigen::Vector3d radii;
+  if constexpr(!is_default_parameter<NamedParameters, internal_np::ellipsoid_radii_t>::value) {
+    const auto& r = get_parameter(np, internal_np::ellipsoid_radii);
+    radii = Eigen::Vector3d(double(r[0]), double(r[1]), double(r[2]));
+  } else {
+    radii = bounding_box_radii(a.X);
+  }
+  check_radii(radii);
+  return radii;
+}
+
+} // namespace internal
+
+/// \ingroup PkgDensityEqualizingMapsEllipsoid
+/// \brief Computes the ellipsoidal density-equalizing map (EDEM) of a genus-0 closed mesh.
+///
+/// The density-equalizing flow of `spherical_density_equalizing_map()` run on
+/// the ellipsoid \f$ x^2/a^2 + y^2/b^2 + z^2/c^2 = 1 \f$ (Lyu, Lui, Choi 2026):
+/// velocities are projected on the ellipsoid's tangent planes, vertices are
+/// kept on it by radial projection, and fold-overs are repaired on the unit
+/// sphere through \f$ h(x,y,z) = (x/a, y/b, z/c) \f$, a linear map that neither
+/// creates nor removes fold-overs. The default population (input face areas)
+/// gives an area-preserving ellipsoidal parameterization.
+///
+/// \tparam TriangleMesh a model of `FaceListGraph`
+/// \tparam VertexPointOutMap a writable vertex property map with 3D points as values
+/// \param tm the input mesh (closed, genus 0)
+/// \param ellipsoid_map receives the image of each vertex on the ellipsoid
+/// \param np optional named parameters:
+/// \cgalNamedParamsBegin
+///   \cgalParamNBegin{ellipsoid_radii}
+///     \cgalParamDescription{the radii (a, b, c), all positive}
+///     \cgalParamType{`std::array<double, 3>`}
+///     \cgalParamDefault{the bounding-box radii of the input, normalized to mean 1}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{initial_map}
+///     \cgalParamDescription{a bijective starting map (projected radially onto the ellipsoid)}
+///     \cgalParamDefault{`ellipsoidal_conformal_map()` with the same radii}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{face_population_map, vertex_density_map, time_step, truncation, progress_callback,
+///     vertex_point_map, vertex_index_map, sparse_linear_solver}
+///     \cgalParamDescription{as for `spherical_density_equalizing_map()`}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{stopping_tolerance}
+///     \cgalParamDescription{stop when sd/mean of the diffused vertex density is below it}
+///     \cgalParamDefault{1e-3}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{number_of_iterations}
+///     \cgalParamDescription{maximum number of iterations}
+///     \cgalParamDefault{300}
+///   \cgalParamNEnd
+/// \cgalNamedParamsEnd
+/// \returns a `Map_report` with the radii used
+/// \throws Invalid_input on an invalid mesh, population, radii or parameter; nothing is written then.
+template <class TriangleMesh, class VertexPointOutMap,
+          class NamedParameters = parameters::Default_named_parameters>
+Map_report ellipsoidal_density_equalizing_map(const TriangleMesh& tm, VertexPointOutMap ellipsoid_map,
+                                              const NamedParameters& np = parameters::default_values())
+{
+  using CGAL::parameters::choose_parameter;
+  using CGAL::parameters::get_parameter;
+  const auto a = internal::closed_surface_arrays(tm, np, 2);
+  const Eigen::Vector3d radii = internal::ellipsoid_radii_from_parameters(a, np);
+  const internal::Vector population = internal::population_from_parameters(a, np);
+  const internal::Engine_options options = internal::engine_options_from_parameters(np, 0.1, 1e-3, 300);
+  const double truncation = choose_parameter(get_parameter(np, internal_np::truncation), 0.1);
+  if(!(truncation > 0 && truncation < 1)) throw Invalid_input("truncation must lie in (0, 1)");
+  const auto solver = internal::solver_from_parameters(np);
+
+  std::string note;
+  internal::Matrix x = internal::initial_ellipsoidal_map(tm, a, radii, np, *solver, note);
+  internal::Ellipsoid_domain ellipsoid(a.F, x, radii, truncation, *solver);
+  internal::Density_flow flow;
+  const internal::Engine_result r = internal::run_density_equalization(ellipsoid, flow, x, population, options, *solver);
+
+  Map_report report;
+  internal::fill_report(r, report);
+  report.message = note + report.message;
+  report.fold_overs = ellipsoid.fold_overs(x);
+  report.radii = {radii[0], radii[1], radii[2]};
+  internal::write_points(a, x, ellipsoid_map);
+  return report;
+}
+
+/// \ingroup PkgDensityEqualizingMapsEllipsoid
+/// \brief Computes the ellipsoidal density-equalizing quasi-conformal map (EDEQ) with optimized radii.
+///
+/// Minimizes \f$ E = E_{density} + \alpha E_{BC} \f$ by alternating the EDEM
+/// step with a search over the radii: every 5 iterations the 9 radii
+/// \f$ (a, b \pm \delta, c \pm \delta) \f$ (and mixed) with \f$ \delta = 0.1\cdot0.9^m \f$ are tried
+/// and the one of least energy is kept (a is fixed: the scale is free). Stops
+/// when the relative change of E is below the tolerance. The radii found are
+/// in `Map_report::radii`.
+///
+/// \param tm the input mesh (closed, genus 0)
+/// \param ellipsoid_map receives the map onto the final ellipsoid
+/// \param np as `ellipsoidal_density_equalizing_map()` (`ellipsoid_radii` are the initial radii), plus:
+/// \cgalNamedParamsBegin
+///   \cgalParamNBegin{beltrami_weight}
+///     \cgalParamDescription{the weight \f$\alpha\f$ of the Beltrami term}
+///     \cgalParamType{double}
+///     \cgalParamDefault{5}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{stopping_tolerance}
+///     \cgalParamDescription{stop when the relative change of the energy is below it}
+///     \cgalParamDefault{1e-5}
+///   \cgalParamNEnd
+/// \cgalNamedParamsEnd
+template <class TriangleMesh, class VertexPointOutMap,
+          class NamedParameters = parameters::Default_named_parameters>
+Map_report ellipsoidal_density_equalizing_quasiconformal_map(const TriangleMesh& tm, VertexPointOutMap ellipsoid_map,
+                                                             const NamedParameters& np = parameters::default_values())
+{
+  using CGAL::parameters::choose_parameter;
+  using CGAL::parameters::get_parameter;
+  const auto a = internal::closed_surface_arrays(tm, np, 2);
+  const Eigen::Vector3d radii = internal::ellipsoid_radii_from_parameters(a, np);
+  const internal::Vector population = internal::population_from_parameters(a, np);
+  const internal::Engine_options options = internal::engine_options_from_parameters(np, 0.1, 1e-5, 300);
+  const double truncation = choose_parameter(get_parameter(np, internal_np::truncation), 0.1);
+  if(!(truncation > 0 && truncation < 1)) throw Invalid_input("truncation must lie in (0, 1)");
+  const double alpha = choose_parameter(get_parameter(np, internal_np::beltrami_weight), 5.);
+  if(!(alpha >= 0) || !std::isfinite(alpha)) throw Invalid_input("beltrami_weight must be non-negative");
+  const auto solver = internal::solver_from_parameters(np);
+
+  std::string note;
+  internal::Matrix x = internal::initial_ellipsoidal_map(tm, a, radii, np, *solver, note);
+  internal::Ellipsoid_domain ellipsoid(a.F, x, radii, truncation, *solver);
+  internal::Radii_search_flow flow(a.F, population, x, alpha, options.time_step, *solver);
+  flow.energy_old = flow.energy(x);
+  const internal::Engine_result r = internal::run_density_equalization(ellipsoid, flow, x, population, options, *solver);
+
+  Map_report report;
+  internal::fill_report(r, report);
+  report.message = note + report.message;
+  report.fold_overs = ellipsoid.fold_overs(x);
+  const Eigen::Vector3d& found = ellipsoid.radii();
+  report.radii = {found[0], found[1], found[2]};
+  internal::write_points(a, x, ellipsoid_map);
+  return report;
+}
+
+} // namespace Density_equalizing_maps
+} // namespace CGAL
+
+#endif // CGAL_DENSITY_EQUALIZING_MAPS_ELLIPSOIDAL_DENSITY_EQUALIZING_MAP_H

@@ -1,0 +1,100 @@
+// Copyright (c) 2026 Density_equalizing_maps contributors.
+// This file is part of Density_equalizing_maps, a third-party CGAL package.
+// SPDX-License-Identifier: GPL-3.0-or-later
+
+#ifndef CGAL_DENSITY_EQUALIZING_MAPS_INTERNAL_RADII_SEARCH_FLOW_H
+#define CGAL_DENSITY_EQUALIZING_MAPS_INTERNAL_RADII_SEARCH_FLOW_H
+
+// EDEQ (paper 000 section 3.3, ALGORITHMS.md 9.2): the density flow on the
+// ellipsoid, alternated every K iterations with a search over the radii (b, c)
+// that lowers E = E_density + alpha E_BC; stops on the relative energy change.
+
+#include <CGAL/Density_equalizing_maps/internal/beltrami.h>
+#include <CGAL/Density_equalizing_maps/internal/ellipsoid_domain.h>
+
+namespace CGAL {
+namespace Density_equalizing_maps {
+namespace internal {
+
+struct Radii_search_flow
+{
+  const Index_matrix& F;
+  Vector population;
+  Matrix initial_map;          // r0, the reference of the Beltrami term
+  double alpha = 5;
+  double time_step = 0.1;
+  std::size_t search_period = 5;
+  std::unique_ptr<Spd_solver> solver;
+  Face_block_assembler assembler;
+  double energy_old = 0, energy_new = 0;
+  std::size_t searches = 0;
+
+  Radii_search_flow(const Index_matrix& faces, const Vector& p, const Matrix& r0, double a, double dt,
+                    const Spd_solver& prototype)
+    : F(faces), population(p), initial_map(r0), alpha(a), time_step(dt), solver(prototype.clone()),
+      assembler(faces, r0.rows())
+  {}
+
+  /// E(r) = sum_i |M grad rho+|_i^2 / max(rho_V)^2 + alpha sum_T |mu_T|^2, rho+ one
+  /// diffusion step of the density on r (the reference code's discretization).
+  double energy(const Matrix& r)
+  {
+    const Vector area = face_areas(r, F);
+    const Sparse_matrix M = face_to_vertex(area, F, r.rows());
+    const Vector rho = M * population.cwiseQuotient(area);
+    const Vector A = lumped_mass(r, F);
+    const Sparse_matrix K = assembler.assemble(time_step * cotangent_stiffness_blocks(r, F), &A);
+    Matrix rhs = A.cwiseProduct(rho), rho_plus;
+    if(!solver->factor(K) || !solver->solve(rhs, rho_plus)) return std::numeric_limits<double>::infinity();
+    const Matrix G = M * face_gradient(r, F, rho_plus.col(0));
+    const double m = rho.maxCoeff();
+    return G.rowwise().squaredNorm().sum() / (m * m) +
+           alpha * beltrami_magnitude_3d(initial_map, r, F).squaredNorm();
+  }
+
+  void before_step(Matrix&) {}
+  void direction(const Flow_state&, Matrix&) {}
+
+  /// Every K-th iteration: the best of the 9 radii (a, b + i delta, c + j delta),
+  /// i, j in {-1, 0, 1}, delta = 0.1 * 0.9^m; a is kept (the scale is free).
+  void after_step(std::size_t iteration, Matrix& x, Ellipsoid_domain& domain)
+  {
+    const std::size_t n = iteration - 1; // the reference's counter before its increment
+    energy_new = energy(x);
+    if(n < 2 || n % search_period != 0) return;
+    ++searches;
+    const double delta = std::max(0.1 * std::pow(0.9, double(n / search_period)), 1e-5);
+    const Eigen::Vector3d r = domain.radii();
+    Eigen::Vector3d best = r;
+    double best_energy = energy_new;
+    const int order[9][2] = {{0, 0}, {0, -1}, {0, 1}, {-1, 0}, {1, 0}, {-1, -1}, {-1, 1}, {1, -1}, {1, 1}};
+    for(const auto& o : order) {
+      if(o[0] == 0 && o[1] == 0) continue;
+      const Eigen::Vector3d c(r[0], r[1] + o[0] * delta, r[2] + o[1] * delta);
+      if(c[1] < 0.05 * c[0] || c[2] < 0.05 * c[0]) continue;
+      Matrix y = x;
+      y.col(1) *= c[1] / r[1];
+      y.col(2) *= c[2] / r[2];
+      const double e = energy(y);
+      if(e < best_energy) { best_energy = e; best = c; }
+    }
+    if(best != r) {
+      domain.set_radii(x, best);
+      energy_new = best_energy;
+    }
+  }
+
+  /// relative change of the energy
+  double stop_measure(const Matrix&, const Matrix&, double)
+  {
+    const double change = std::abs(1 - energy_new / energy_old);
+    energy_old = energy_new;
+    return change;
+  }
+};
+
+} // namespace internal
+} // namespace Density_equalizing_maps
+} // namespace CGAL
+
+#endif // CGAL_DENSITY_EQUALIZING_MAPS_INTERNAL_RADII_SEARCH_FLOW_H
