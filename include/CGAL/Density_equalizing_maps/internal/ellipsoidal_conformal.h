@@ -1,0 +1,884 @@
+// Copyright (c) 2026 Density_equalizing_maps contributors.
+// This file is part of Density_equalizing_maps, a third-party CGAL package.
+// SPDX-License-Identifier: GPL-3.0-or-later
+
+#ifndef CGAL_DENSITY_EQUALIZING_MAPS_INTERNAL_ELLIPSOIDAL_CONFORMAL_H
+#define CGAL_DENSITY_EQUALIZING_MAPS_INTERNAL_ELLIPSOIDAL_CONFORMAL_H
+
+// Ellipsoidal conformal map (FECM), optimization of the radii and the
+// landmark-aligned ellipsoidal quasi-conformal map (FEQCM), paper 003
+// Sections 4-5, ALGORITHMS.md sections 5-6, on index arrays.
+//
+// Pipeline: FLASH spherical map -> north chart z -> Moebius g sending the top
+// pole face to infinity, the bottom pole face to 0 and the "right" vertex to
+// the positive real axis -> balancing factor k -> planar chart p. For radii
+// (a,b,c): psi = LBS(mu of (P^N_abc)^{-1}) on the chart punctured at the north
+// face, and the output f = (P^N_abc)^{-1}(psi^{-1}(p)). psi^{-1} is evaluated by
+// locating p_i in the triangulation (psi(p), F') and interpolating the chart
+// positions barycentrically, so every output point lies exactly on the ellipsoid.
+// Steps up to the chart p do not depend on the radii and are computed once.
+
+#include <CGAL/Density_equalizing_maps/internal/beltrami.h>
+#include <CGAL/Density_equalizing_maps/internal/fold_overs.h>
+#include <CGAL/Density_equalizing_maps/internal/measures.h>
+#include <CGAL/Density_equalizing_maps/internal/projections.h>
+#include <CGAL/Density_equalizing_maps/internal/spherical_conformal.h>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/SVD>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <numeric>
+#include <string>
+#include <vector>
+
+namespace CGAL {
+namespace Density_equalizing_maps {
+namespace internal {
+
+// ---------------------------------------------------------------------------
+// Frame, bounding-box radii, default poles
+// ---------------------------------------------------------------------------
+
+/// The centred principal frame of the vertex positions: `axes.col(c)` is the
+/// input-space direction associated with ellipsoid axis c, `extent[c]` the
+/// bounding-box side of the centred input along it.
+struct Principal_frame
+{
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d extent = Eigen::Vector3d::Zero();
+};
+
+/// PCA of the vertex positions. The principal axes are ranked by the
+/// bounding-box extent of the centred mesh along them and matched by rank to
+/// the ellipsoid axes: without `radii` the longest goes to z (the poles are
+/// taken along z), the middle one to x and the shortest to y, so c >= a >= b;
+/// with `radii`, the k-th shortest principal axis goes to the axis of the k-th
+/// smallest radius (ties keep x, y, z order). Each axis is signed so that its
+/// largest component is positive, so an axis-aligned input keeps its directions.
+inline Principal_frame principal_frame(const Matrix& X, const Eigen::Vector3d* radii = nullptr)
+{
+  Principal_frame fr;
+  const Eigen::Index n = X.rows();
+  fr.center = X.colwise().mean().transpose();
+  Eigen::Matrix3d C = Eigen::Matrix3d::Zero();
+  for(Eigen::Index i = 0; i < n; ++i) {
+    const Eigen::Vector3d d = row_vector3(X, i) - fr.center;
+    C += d * d.transpose();
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(C);
+  Eigen::Matrix3d E = es.eigenvectors(); // ascending eigenvalues
+  Eigen::Vector3d ext;
+  for(int j = 0; j < 3; ++j) {
+    Eigen::Index big;
+    E.col(j).cwiseAbs().maxCoeff(&big);
+    if(E(big, j) < 0) E.col(j) = -E.col(j);
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for(Eigen::Index i = 0; i < n; ++i) {
+      const double t = (row_vector3(X, i) - fr.center).dot(E.col(j));
+      lo = std::min(lo, t); hi = std::max(hi, t);
+    }
+    ext[j] = hi - lo;
+  }
+  std::array<int, 3> by_extent = {0, 1, 2};
+  std::stable_sort(by_extent.begin(), by_extent.end(), [&](int i, int j) { return ext[i] < ext[j]; });
+  std::array<int, 3> coordinate_by_radius = {1, 0, 2}; // shortest -> y, middle -> x, longest -> z
+  if(radii) {
+    coordinate_by_radius = {0, 1, 2};
+    std::stable_sort(coordinate_by_radius.begin(), coordinate_by_radius.end(),
+                     [&](int i, int j) { return (*radii)[i] < (*radii)[j]; });
+  }
+  for(int k = 0; k < 3; ++k) {
+    fr.axes.col(coordinate_by_radius[k]) = E.col(by_extent[k]);
+    fr.extent[coordinate_by_radius[k]] = ext[by_extent[k]];
+  }
+  return fr;
+}
+
+inline std::array<Eigen::Index, 3> default_pole_vertices(const Matrix& X, const Principal_frame& fr);
+
+/// Pole vertices (top, bottom, right) that orient the map like the landmark
+/// targets: the best rotation R (Kabsch) taking the current images of the
+/// landmarks, pulled back to the unit sphere, to their targets (same pull
+/// back) is applied to every image, and the poles are the vertices of
+/// largest / smallest z and of largest x after it.
+inline std::array<Eigen::Index, 3> landmark_aligned_pole_vertices(const Matrix& f, const Eigen::Vector3d& radii,
+                                                                  const std::vector<Eigen::Index>& landmarks,
+                                                                  const Matrix& targets)
+{
+  Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
+  for(std::size_t k = 0; k < landmarks.size(); ++k) {
+    const Eigen::Vector3d s = row_vector3(f, landmarks[k]).cwiseQuotient(radii).normalized();
+    const Eigen::Vector3d q = row_vector3(targets, Eigen::Index(k)).cwiseQuotient(radii).normalized();
+    H += s * q.transpose();
+  }
+  Eigen::JacobiSVD<Eigen::Matrix3d> svd(H, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Matrix3d D = Eigen::Matrix3d::Identity();
+  D(2, 2) = (svd.matrixV() * svd.matrixU().transpose()).determinant() < 0 ? -1 : 1;
+  const Eigen::Matrix3d R = svd.matrixV() * D * svd.matrixU().transpose();
+  Principal_frame fr;
+  fr.axes = R.transpose(); // coordinates of the rotated images: axes.col(c) . s
+  Matrix S(f.rows(), 3);
+  for(Eigen::Index i = 0; i < f.rows(); ++i) S.row(i) = row_vector3(f, i).cwiseQuotient(radii).normalized().transpose();
+  return default_pole_vertices(S, fr);
+}
+
+/// Paper 003 eq. 41: the bounding-box sides of the centred, principal-axis
+/// aligned mesh divided by their mean (so (a + b + c) / 3 = 1).
+inline Eigen::Vector3d bounding_box_radii(const Matrix& X)
+{
+  const Principal_frame fr = principal_frame(X);
+  return fr.extent / fr.extent.mean();
+}
+
+/// Default poles: the vertices of largest and smallest coordinate along the
+/// frame's z axis (top, bottom) and of largest coordinate along its x axis
+/// (right), lowest index on ties; `right` differs from both poles.
+inline std::array<Eigen::Index, 3> default_pole_vertices(const Matrix& X, const Principal_frame& fr)
+{
+  const Eigen::Index n = X.rows();
+  std::array<Eigen::Index, 3> v = {0, 0, -1};
+  double zmax = -std::numeric_limits<double>::infinity(), zmin = -zmax, xmax = zmax;
+  for(Eigen::Index i = 0; i < n; ++i) {
+    const double z = (row_vector3(X, i) - fr.center).dot(fr.axes.col(2));
+    if(z > zmax) { zmax = z; v[0] = i; }
+    if(z < zmin) { zmin = z; v[1] = i; }
+  }
+  if(v[0] == v[1]) v[1] = (v[0] + 1) % n;
+  for(Eigen::Index i = 0; i < n; ++i) {
+    if(i == v[0] || i == v[1]) continue;
+    const double x = (row_vector3(X, i) - fr.center).dot(fr.axes.col(0));
+    if(x > xmax) { xmax = x; v[2] = i; }
+  }
+  return v;
+}
+
+// ---------------------------------------------------------------------------
+// Mesh traversal and planar point location
+// ---------------------------------------------------------------------------
+
+/// Vertex-to-face incidence in compressed rows.
+struct Vertex_faces
+{
+  std::vector<Eigen::Index> start, faces;
+  Vertex_faces() = default;
+  Vertex_faces(const Index_matrix& F, Eigen::Index n) : start(static_cast<std::size_t>(n) + 1, 0)
+  {
+    for(Eigen::Index k = 0; k < F.rows(); ++k)
+      for(int c = 0; c < 3; ++c) ++start[F(k, c) + 1];
+    for(Eigen::Index i = 0; i < n; ++i) start[i + 1] += start[i];
+    faces.resize(static_cast<std::size_t>(3 * F.rows()));
+    std::vector<Eigen::Index> fill(start.begin(), start.end() - 1);
+    for(Eigen::Index k = 0; k < F.rows(); ++k)
+      for(int c = 0; c < 3; ++c) faces[fill[F(k, c)]++] = k;
+  }
+  Eigen::Index begin(Eigen::Index i) const { return start[i]; }
+  Eigen::Index end(Eigen::Index i) const { return start[i + 1]; }
+};
+
+/// Breadth-first order of the vertices along mesh edges and each vertex's
+/// parent (-1 for the root): consecutive queries of a continuous per-vertex
+/// field start their point location next to the parent's answer.
+inline void breadth_first_vertex_order(const Index_matrix& F, Eigen::Index n, std::vector<Eigen::Index>& order,
+                                       std::vector<Eigen::Index>& parent)
+{
+  const Vertex_faces vf(F, n);
+  order.clear();
+  order.reserve(static_cast<std::size_t>(n));
+  parent.assign(static_cast<std::size_t>(n), -2);
+  for(Eigen::Index root = 0; root < n; ++root) {
+    if(parent[root] != -2) continue;
+    parent[root] = -1;
+    std::size_t head = order.size();
+    order.push_back(root);
+    while(head < order.size()) {
+      const Eigen::Index i = order[head++];
+      for(Eigen::Index s = vf.begin(i); s < vf.end(i); ++s)
+        for(int c = 0; c < 3; ++c) {
+          const Eigen::Index j = F(vf.faces[s], c);
+          if(parent[j] == -2) { parent[j] = i; order.push_back(j); }
+        }
+    }
+  }
+}
+
+/// Point location in a planar triangulation (n x 2 positions, faces that may
+/// leave some vertices unused) by a randomized visibility walk with exact
+/// orientation predicates; brute force if the walk does not settle (possible
+/// only where the triangulation folds). The domain is assumed convex (it is
+/// the outer triangle of a punctured sphere chart), so leaving it through a
+/// boundary edge means the point lies outside.
+class Planar_point_locator
+{
+public:
+  Planar_point_locator(const Matrix& Q, const Index_matrix& F) : m_F(F)
+  {
+    const Eigen::Index n = Q.rows();
+    m_P.reserve(static_cast<std::size_t>(n));
+    for(Eigen::Index i = 0; i < n; ++i) m_P.emplace_back(Q(i, 0), Q(i, 1));
+    const Vertex_faces vf(F, n);
+    m_vertex_face.assign(static_cast<std::size_t>(n), -1);
+    for(Eigen::Index i = 0; i < n; ++i)
+      if(vf.end(i) > vf.begin(i)) m_vertex_face[i] = vf.faces[vf.begin(i)];
+    m_neighbor.resize(F.rows(), 3);
+    long balance = 0;
+    for(Eigen::Index k = 0; k < F.rows(); ++k) {
+      balance += static_cast<int>(CGAL::orientation(m_P[F(k, 0)], m_P[F(k, 1)], m_P[F(k, 2)]));
+      for(int a = 0; a < 3; ++a) {
+        const int b = F(k, (a + 1) % 3), c = F(k, (a + 2) % 3);
+        m_neighbor(k, a) = -1;
+        for(Eigen::Index s = vf.begin(c); s < vf.end(c); ++s) { // the face with the directed edge (c, b)
+          const Eigen::Index g = vf.faces[s];
+          if(g == k) continue;
+          for(int e = 0; e < 3; ++e)
+            if(F(g, e) == c && F(g, (e + 1) % 3) == b) m_neighbor(k, a) = g;
+        }
+      }
+    }
+    m_sign = balance >= 0 ? 1 : -1;
+    m_max_steps = static_cast<std::size_t>(20 * std::sqrt(double(F.rows())) + 1000);
+  }
+
+  /// A face incident to vertex i (-1 if none).
+  Eigen::Index incident_face(Eigen::Index i) const { return m_vertex_face[i]; }
+
+  /// The face containing q (on its closure), or -1 if q is outside the domain.
+  Eigen::Index locate(const Eigen::Vector2d& q2, Eigen::Index start) const
+  {
+    const Epick::Point_2 q(q2.x(), q2.y());
+    Eigen::Index f = start >= 0 ? start : 0;
+    for(std::size_t step = 0; step < m_max_steps; ++step) {
+      m_rng = m_rng * 6364136223846793005ULL + 1442695040888963407ULL;
+      const int r = static_cast<int>((m_rng >> 33) % 3);
+      bool moved = false;
+      for(int t = 0; t < 3 && !moved; ++t) {
+        const int a = (r + t) % 3;
+        const int b = m_F(f, (a + 1) % 3), c = m_F(f, (a + 2) % 3);
+        if(m_sign * static_cast<int>(CGAL::orientation(m_P[b], m_P[c], q)) < 0) {
+          const Eigen::Index g = m_neighbor(f, a);
+          if(g < 0) return -1;
+          f = g;
+          moved = true;
+        }
+      }
+      if(!moved) return f;
+    }
+    // The walk did not settle (folded region): search every face.
+    for(Eigen::Index k = 0; k < m_F.rows(); ++k) {
+      bool inside = true;
+      for(int a = 0; a < 3 && inside; ++a)
+        inside = m_sign * static_cast<int>(CGAL::orientation(m_P[m_F(k, (a + 1) % 3)], m_P[m_F(k, (a + 2) % 3)], q)) >= 0;
+      if(inside) return k;
+    }
+    return -1;
+  }
+
+  /// Barycentric coordinates of q in face f (clamped to be non-negative).
+  Eigen::Vector3d barycentric(Eigen::Index f, const Eigen::Vector2d& q) const
+  {
+    Eigen::Vector2d v[3];
+    for(int a = 0; a < 3; ++a) v[a] = Eigen::Vector2d(m_P[m_F(f, a)].x(), m_P[m_F(f, a)].y());
+    auto area2 = [](const Eigen::Vector2d& x, const Eigen::Vector2d& y, const Eigen::Vector2d& z) {
+      return (y.x() - x.x()) * (z.y() - x.y()) - (y.y() - x.y()) * (z.x() - x.x());
+    };
+    Eigen::Vector3d l(std::max(0., m_sign * area2(q, v[1], v[2])), std::max(0., m_sign * area2(v[0], q, v[2])),
+                      std::max(0., m_sign * area2(v[0], v[1], q)));
+    const double s = l.sum();
+    if(!(s > 0) || !std::isfinite(s)) return Eigen::Vector3d::Constant(1. / 3);
+    return l / s;
+  }
+
+  const Index_matrix& faces() const { return m_F; }
+
+private:
+  const Index_matrix& m_F;
+  std::vector<Epick::Point_2> m_P;
+  std::vector<Eigen::Index> m_vertex_face;
+  Eigen::Matrix<Eigen::Index, Eigen::Dynamic, 3> m_neighbor;
+  int m_sign = 1;
+  std::size_t m_max_steps = 1000;
+  mutable std::uint64_t m_rng = 0x853c49e6748fea9bULL;
+};
+
+/// For every vertex i, the values (n x 2) interpolated at queries[i] in the
+/// located face of `locator`; where queries[i] lies outside the domain the
+/// query itself is returned (the maps interpolated here are the identity on
+/// the domain's boundary, so this extends them continuously). Queries are
+/// processed in breadth-first order, each walk starting at the parent's face.
+inline Matrix interpolate_at_vertex_queries(const Planar_point_locator& locator, const Matrix& values,
+                                            const Matrix& queries, const std::vector<Eigen::Index>& order,
+                                            const std::vector<Eigen::Index>& parent, std::size_t* outside = nullptr)
+{
+  const Eigen::Index n = queries.rows();
+  const Index_matrix& F = locator.faces();
+  Matrix out(n, 2);
+  std::vector<Eigen::Index> located(static_cast<std::size_t>(n), -1);
+  std::size_t n_out = 0;
+  Eigen::Index last = -1;
+  for(const Eigen::Index i : order) {
+    Eigen::Index start = parent[i] >= 0 ? located[parent[i]] : -1;
+    if(start < 0) start = locator.incident_face(i);
+    if(start < 0) start = last;
+    const Eigen::Vector2d q(queries(i, 0), queries(i, 1));
+    const Eigen::Index f = locator.locate(q, start);
+    located[i] = f;
+    if(f < 0) { out.row(i) = q.transpose(); ++n_out; continue; }
+    last = f;
+    const Eigen::Vector3d l = locator.barycentric(f, q);
+    out.row(i) = l[0] * values.row(F(f, 0)) + l[1] * values.row(F(f, 1)) + l[2] * values.row(F(f, 2));
+  }
+  if(outside) *outside = n_out;
+  return out;
+}
+
+// ---------------------------------------------------------------------------
+// FECM steps 1-4: the radii-independent planar chart
+// ---------------------------------------------------------------------------
+
+/// The face incident to vertex v whose centroid is nearest to x_v (other than `exclude`).
+inline Eigen::Index pole_face(const Matrix& X, const Index_matrix& F, Eigen::Index v, Eigen::Index exclude)
+{
+  Eigen::Index best = -1;
+  double best_d = std::numeric_limits<double>::infinity();
+  const Eigen::Vector3d x = row_vector3(X, v);
+  for(Eigen::Index k = 0; k < F.rows(); ++k) {
+    if(k == exclude || (F(k, 0) != v && F(k, 1) != v && F(k, 2) != v)) continue;
+    const double d = ((row_vector3(X, F(k, 0)) + row_vector3(X, F(k, 1)) + row_vector3(X, F(k, 2))) / 3. - x).norm();
+    if(d < best_d) { best_d = d; best = k; }
+  }
+  return best;
+}
+
+struct Ellipsoidal_chart
+{
+  Complex_vector p;                 // k g(P^N(S)): north face -> around infinity, south face -> around 0
+  Index_matrix open_faces;          // F without the north face
+  Eigen::Index north_face = -1, south_face = -1;
+  std::array<Eigen::Index, 3> poles = {-1, -1, -1};
+  bool tutte = false;
+};
+
+inline double perimeter(Complex a, Complex b, Complex c) { return std::abs(a - b) + std::abs(b - c) + std::abs(c - a); }
+
+/// Steps 1-4 of FECM: FLASH, Moebius normalization of the poles, balancing.
+inline Ellipsoidal_chart ellipsoidal_chart(const Matrix& X, const Index_matrix& F,
+                                           const std::array<Eigen::Index, 3>& poles, const Spd_solver& prototype)
+{
+  Ellipsoidal_chart ch;
+  ch.poles = poles;
+  const Flash_result flash = flash_spherical_map(X, F, prototype);
+  ch.tutte = flash.tutte;
+  ch.north_face = pole_face(X, F, poles[0], -1);
+  ch.south_face = pole_face(X, F, poles[1], ch.north_face);
+  if(ch.south_face < 0) ch.south_face = pole_face(X, F, poles[1], -1);
+  auto centroid = [&](Eigen::Index t) {
+    return Eigen::Vector3d(row_vector3(flash.S, F(t, 0)) + row_vector3(flash.S, F(t, 1)) + row_vector3(flash.S, F(t, 2)));
+  };
+  // Work in FLASH's south chart w (z = P^N(S) = 1 / conj(w)), which is finite
+  // everywhere: g(z) = e^{i theta} (z - z0) / (z - z1) equals, up to a constant
+  // factor absorbed by theta and k, conj((w - w0) / (w - w1)) with w0, w1 the
+  // south-chart images of the pole face centroids.
+  const Complex w1 = south_stereographic(centroid(ch.north_face).normalized());
+  const Complex w0 = south_stereographic(centroid(ch.south_face).normalized());
+  const Complex_vector& w = flash.south_w;
+  const Eigen::Index n = X.rows();
+  Complex_vector h(n);
+  const bool w0_finite = std::isfinite(w0.real()) && std::isfinite(w0.imag());
+  const bool w1_finite = std::isfinite(w1.real()) && std::isfinite(w1.imag());
+  for(Eigen::Index i = 0; i < n; ++i) {
+    const Complex num = w0_finite ? w[i] - w0 : Complex(1, 0);
+    const Complex den = w1_finite ? w[i] - w1 : Complex(1, 0);
+    h[i] = std::conj(num / den);
+  }
+  const Complex r = h[poles[2]];
+  if(std::abs(r) > 0 && std::isfinite(std::abs(r))) h *= std::conj(r) / std::abs(r); // right vertex on the positive real axis
+  const Eigen::Index tN = ch.north_face, tS = ch.south_face;
+  const double perim_N = perimeter(h[F(tN, 0)], h[F(tN, 1)], h[F(tN, 2)]);
+  auto inv = [](Complex z) { return 1. / std::conj(z); };
+  const double perim_S = perimeter(inv(h[F(tS, 0)]), inv(h[F(tS, 1)]), inv(h[F(tS, 2)]));
+  // paper eq. 29: k = sqrt(Pi_N Pi_S) / Pi_N, so both polar triangles get equal perimeters
+  if(perim_N > 0 && perim_S > 0 && std::isfinite(perim_N) && std::isfinite(perim_S)) h *= std::sqrt(perim_S / perim_N);
+  ch.p = h;
+  if(!ch.p.allFinite())
+    throw Invalid_input("the ellipsoidal chart is not finite: the spherical conformal map degenerated");
+  ch.open_faces.resize(F.rows() - 1, 3);
+  for(Eigen::Index k = 0, j = 0; k < F.rows(); ++k)
+    if(k != tN) ch.open_faces.row(j++) = F.row(k);
+  return ch;
+}
+
+// ---------------------------------------------------------------------------
+// FECM steps 5-8 for given radii
+// ---------------------------------------------------------------------------
+
+/// Beltrami coefficient of (P^N_abc)^{-1} at the point x + iy (paper 003 eqs. 31-36;
+/// the common factor (1 + x^2 + y^2)^{-4} of E, F, G cancels).
+inline Complex inverse_ellipsoidal_projection_beltrami(Complex z, const Eigen::Vector3d& r)
+{
+  const double x = z.real(), y = z.imag();
+  const double a2 = r[0] * r[0], b2 = r[1] * r[1], c2 = r[2] * r[2];
+  const double u = 1 - x * x + y * y, v = 1 + x * x - y * y;
+  const double E = 4 * a2 * u * u + 16 * b2 * x * x * y * y + 16 * c2 * x * x;
+  const double Fm = -8 * a2 * x * y * u - 8 * b2 * x * y * v + 16 * c2 * x * y;
+  const double G = 16 * a2 * x * x * y * y + 4 * b2 * v * v + 16 * c2 * y * y;
+  const double det = std::max(E * G - Fm * Fm, 0.);
+  const double den = E + G + 2 * std::sqrt(det);
+  if(!(den > 0) || !std::isfinite(den)) return Complex(0, 0);
+  return Complex(E - G, 2 * Fm) / den;
+}
+
+inline void check_radii(const Eigen::Vector3d& r)
+{
+  for(int c = 0; c < 3; ++c)
+    if(!std::isfinite(r[c]) || !(r[c] > 0))
+      throw Invalid_input("ellipsoid radii must be positive and finite (got " + std::to_string(r[0]) + ", " +
+                          std::to_string(r[1]) + ", " + std::to_string(r[2]) + ")");
+}
+
+/// The radii-independent state of FECM and FEQCM plus the machinery reused
+/// for every radii (assembler and solver of psi, traversal order).
+class Ellipsoidal_mapper
+{
+public:
+  Ellipsoidal_mapper(const Matrix& X, const Index_matrix& F, const std::array<Eigen::Index, 3>& poles,
+                     const Spd_solver& prototype)
+    : m_X(X), m_F(F), m_prototype(prototype.clone())
+  {
+    m_chart = ellipsoidal_chart(X, F, poles, prototype);
+    m_P = to_planar(m_chart.p);
+    m_open_assembler.build(m_chart.open_faces, X.rows());
+    m_psi_solver = prototype.clone();
+    breadth_first_vertex_order(F, X.rows(), m_order, m_parent);
+    // Pinned set of psi (ALGORITHMS 5.7 [Rec]): the north face, the
+    // max(3, min(50, floor(n/100))) vertices of largest |p|, and the corners of
+    // any open face whose chart orientation disagrees with the majority (faces
+    // bulging past the outer triangle); psi is the identity there.
+    const Eigen::Index n = X.rows();
+    m_fixed.assign(static_cast<std::size_t>(n), 0);
+    for(int a = 0; a < 3; ++a) m_fixed[F(m_chart.north_face, a)] = 1;
+    std::vector<Eigen::Index> idx(static_cast<std::size_t>(n));
+    std::iota(idx.begin(), idx.end(), 0);
+    const Eigen::Index m = std::min<Eigen::Index>(n, std::max<Eigen::Index>(3, std::min<Eigen::Index>(50, n / 100)));
+    std::partial_sort(idx.begin(), idx.begin() + m, idx.end(),
+                      [&](Eigen::Index i, Eigen::Index j) { return std::abs(m_chart.p[i]) > std::abs(m_chart.p[j]); });
+    for(Eigen::Index i = 0; i < m; ++i) m_fixed[idx[i]] = 1;
+    const std::vector<int> o = planar_orientations(m_P, m_chart.open_faces);
+    long balance = 0;
+    for(int s : o) balance += s;
+    m_chart_sign = balance >= 0 ? 1 : -1;
+    for(Eigen::Index k = 0; k < m_chart.open_faces.rows(); ++k)
+      if(o[k] != m_chart_sign)
+        for(int c = 0; c < 3; ++c) m_fixed[m_chart.open_faces(k, c)] = 1;
+  }
+
+  const Ellipsoidal_chart& chart() const { return m_chart; }
+  const Matrix& planar_chart() const { return m_P; }
+  const Matrix& input() const { return m_X; }
+  const Index_matrix& faces() const { return m_F; }
+  const std::vector<char>& psi_fixed() const { return m_fixed; }
+  const std::vector<Eigen::Index>& order() const { return m_order; }
+  const std::vector<Eigen::Index>& parent() const { return m_parent; }
+  const Spd_solver& prototype() const { return *m_prototype; }
+
+  /// psi = LBS(mu of (P^N_abc)^{-1}) for the chart dilated by t, identity on
+  /// the pinned set, expressed in undilated coordinates: the LBS stiffness is
+  /// scale invariant, so the correction of the chart t p is t psi(p / t).
+  Matrix conformal_correction(const Eigen::Vector3d& radii, double t = 1) const
+  {
+    const Eigen::Index n = m_X.rows();
+    Complex_vector vertex_mu(n);
+    for(Eigen::Index i = 0; i < n; ++i) vertex_mu[i] = inverse_ellipsoidal_projection_beltrami(t * m_chart.p[i], radii);
+    const Index_matrix& Fo = m_chart.open_faces;
+    Complex_vector mu(Fo.rows());
+    for(Eigen::Index k = 0; k < Fo.rows(); ++k) // paper eq. 37: mean of the corner values
+      mu[k] = (vertex_mu[Fo(k, 0)] + vertex_mu[Fo(k, 1)] + vertex_mu[Fo(k, 2)]) / 3.;
+    truncate_beltrami(mu, 0.999);
+    Matrix psi;
+    if(!linear_beltrami_solve(m_P, Fo, mu, m_fixed, m_P, *m_psi_solver, psi, &m_open_assembler) || !psi.allFinite())
+      psi = m_P; // cannot happen for a valid chart; the identity keeps the map defined
+    return psi;
+  }
+
+  /// psi^{-1}(queries) for per-vertex queries (n x 2) in the chart plane.
+  Matrix inverse_correction(const Matrix& psi, const Matrix& queries, std::size_t* outside = nullptr) const
+  {
+    const Planar_point_locator locator(psi, m_chart.open_faces);
+    return interpolate_at_vertex_queries(locator, m_P, queries, m_order, m_parent, outside);
+  }
+
+  /// psi at arbitrary chart points: locate in (p, F'), interpolate psi; identity outside.
+  Matrix correction_at(const Matrix& psi, const Matrix& points, const std::vector<Eigen::Index>& start_vertices) const
+  {
+    const Planar_point_locator locator(m_P, m_chart.open_faces);
+    Matrix out(points.rows(), 2);
+    const Index_matrix& Fo = m_chart.open_faces;
+    for(Eigen::Index k = 0; k < points.rows(); ++k) {
+      const Eigen::Vector2d q(points(k, 0), points(k, 1));
+      const Eigen::Index f = locator.locate(q, locator.incident_face(start_vertices[k]));
+      if(f < 0) { out.row(k) = q.transpose(); continue; }
+      const Eigen::Vector3d l = locator.barycentric(f, q);
+      out.row(k) = l[0] * psi.row(Fo(f, 0)) + l[1] * psi.row(Fo(f, 1)) + l[2] * psi.row(Fo(f, 2));
+    }
+    return out;
+  }
+
+private:
+  const Matrix& m_X;
+  const Index_matrix& m_F;
+  std::unique_ptr<Spd_solver> m_prototype;
+  Ellipsoidal_chart m_chart;
+  Matrix m_P;
+  Face_block_assembler m_open_assembler;
+  std::unique_ptr<Spd_solver> m_psi_solver;
+  std::vector<Eigen::Index> m_order, m_parent;
+  std::vector<char> m_fixed;
+  int m_chart_sign = 1;
+};
+
+/// (P^N_abc)^{-1} of every row of a chart (n x 2).
+inline Matrix inverse_ellipsoidal_chart(const Matrix& P, const Eigen::Vector3d& radii)
+{
+  Matrix f(P.rows(), 3);
+  for(Eigen::Index i = 0; i < P.rows(); ++i)
+    f.row(i) = inverse_ellipsoidal_north_stereographic(Complex(P(i, 0), P(i, 1)), radii).transpose();
+  return f;
+}
+
+/// FECM for given radii and chart dilation t. `preimage` receives
+/// psi^{-1}(t p) (the chart points that (P^N_abc)^{-1} sends to the output).
+inline Matrix ellipsoidal_conformal(const Ellipsoidal_mapper& mapper, const Eigen::Vector3d& radii, double t = 1,
+                                    Matrix* preimage = nullptr)
+{
+  const Matrix psi = mapper.conformal_correction(radii, t);
+  const Matrix pre = t * mapper.inverse_correction(psi, mapper.planar_chart());
+  if(preimage) *preimage = pre;
+  return inverse_ellipsoidal_chart(pre, radii);
+}
+
+// ---------------------------------------------------------------------------
+// Radii optimization (paper 003 Section 4.4)
+// ---------------------------------------------------------------------------
+
+/// E_area = mean over faces of d_T^2, d_T the log area ratio normalized by the
+/// total areas (exact sums, so E is invariant under scaling of the radii).
+inline double area_energy(const Vector& source_area, const Vector& image_area)
+{
+  const Vector d = log_area_ratio(source_area, image_area);
+  return d.squaredNorm() / double(d.size());
+}
+
+inline Eigen::Vector3d radii_from_log_ratios(const Eigen::Vector2d& u)
+{
+  Eigen::Vector3d r(std::exp(u[0]), std::exp(u[1]), 1.);
+  return r / r.mean();
+}
+
+/// The FECM output for some radii with the area-optimal chart dilation, and its energy.
+struct Ellipsoidal_evaluation
+{
+  Eigen::Vector3d radii;
+  double dilation = 1;
+  Matrix f;
+  double energy = std::numeric_limits<double>::infinity();
+};
+
+/// FECM for given radii, with psi computed for the balanced chart p. If
+/// `optimal_dilation`, the output is Phi(t p) with Phi = (P^N_abc)^{-1} o psi^{-1}
+/// conformal and t > 0 minimizing E_area (golden-section search on log t):
+/// a Moebius map that keeps both poles and the direction of the right vertex,
+/// so the map stays conformal; it replaces the paper's balancing factor k,
+/// which only equalizes the two polar triangles. Each trial only relocates the
+/// dilated chart points in psi's triangulation (beyond its outer triangle,
+/// around the north pole, psi is extended by the identity it has on that triangle).
+inline Ellipsoidal_evaluation evaluate_ellipsoidal_conformal(const Ellipsoidal_mapper& mapper,
+                                                             const Eigen::Vector3d& radii, const Vector& source_area,
+                                                             bool optimal_dilation, double log_center = 0,
+                                                             double half_width = 2.5)
+{
+  Ellipsoidal_evaluation e;
+  e.radii = radii;
+  const Matrix psi = mapper.conformal_correction(radii, 1.);
+  const Planar_point_locator locator(psi, mapper.chart().open_faces);
+  const Matrix& P = mapper.planar_chart();
+  auto map_at = [&](double t) {
+    const Matrix query = t * P;
+    return inverse_ellipsoidal_chart(
+      interpolate_at_vertex_queries(locator, P, query, mapper.order(), mapper.parent()), radii);
+  };
+  auto energy = [&](const Matrix& f) {
+    const double E = area_energy(source_area, face_areas(f, mapper.faces()));
+    return std::isfinite(E) ? E : std::numeric_limits<double>::infinity();
+  };
+  e.f = map_at(1.);
+  e.energy = energy(e.f);
+  if(optimal_dilation) {
+    const double g = (std::sqrt(5.) - 1) / 2;
+    double lo = log_center - half_width, hi = log_center + half_width;
+    double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
+    double e1 = energy(map_at(std::exp(x1))), e2 = energy(map_at(std::exp(x2)));
+    while(hi - lo > 0.04) {
+      if(e1 <= e2) { hi = x2; x2 = x1; e2 = e1; x1 = hi - g * (hi - lo); e1 = energy(map_at(std::exp(x1))); }
+      else { lo = x1; x1 = x2; e1 = e2; x2 = lo + g * (hi - lo); e2 = energy(map_at(std::exp(x2))); }
+    }
+    const double t = std::exp(0.5 * (lo + hi));
+    Matrix f = map_at(t);
+    const double E = energy(f);
+    if(E < e.energy) { e.f = std::move(f); e.energy = E; e.dilation = t; }
+  }
+  return e;
+}
+
+struct Radii_optimization
+{
+  Ellipsoidal_evaluation best;
+  double initial_energy = 0;
+  std::vector<double> energies; // best energy after each Nelder-Mead iteration
+  std::size_t evaluations = 0, iterations = 0;
+};
+
+/// Minimizes the true E_area (psi recomputed for every radii, so the map
+/// stays conformal) over u = (log(a/c), log(b/c)); E is scale invariant, the
+/// result is scaled to (a + b + c) / 3 = 1. Paper 003 descends a gradient that
+/// freezes psi^{-1}(p); that model ignores how the conformal correction moves
+/// points when the radii change and often points the wrong way, so a
+/// derivative-free Nelder-Mead simplex on the exact energy is used instead
+/// (2 unknowns, a dozen or two evaluations). Steps 1-4 are computed once.
+inline Radii_optimization optimize_ellipsoid_radii(const Ellipsoidal_mapper& mapper, const Eigen::Vector3d& r0,
+                                                   bool optimal_dilation, std::size_t max_evaluations = 14,
+                                                   double tolerance = 1e-3)
+{
+  const Vector source_area = face_areas(mapper.input(), mapper.faces());
+  Radii_optimization res;
+  double log_dilation = 0, half_width = 2.5; // the dilation search is narrowed around the best one so far
+  double best_energy = std::numeric_limits<double>::infinity();
+  auto eval = [&](const Eigen::Vector2d& u) {
+    ++res.evaluations;
+    Ellipsoidal_evaluation e = evaluate_ellipsoidal_conformal(mapper, radii_from_log_ratios(u), source_area,
+                                                              optimal_dilation, log_dilation, half_width);
+    if(e.energy < best_energy) { best_energy = e.energy; log_dilation = std::log(e.dilation); half_width = 0.6; }
+    return e;
+  };
+  std::array<Eigen::Vector2d, 3> x;
+  std::array<Ellipsoidal_evaluation, 3> v;
+  x[0] = Eigen::Vector2d(std::log(r0[0] / r0[2]), std::log(r0[1] / r0[2]));
+  v[0] = eval(x[0]);
+  res.initial_energy = v[0].energy;
+  res.energies.push_back(v[0].energy);
+  const double h = 0.15;
+  x[1] = x[0] + Eigen::Vector2d(h, 0);
+  x[2] = x[0] + Eigen::Vector2d(0, h);
+  v[1] = eval(x[1]);
+  v[2] = eval(x[2]);
+  while(res.evaluations < max_evaluations) {
+    std::array<int, 3> o = {0, 1, 2};
+    std::sort(o.begin(), o.end(), [&](int i, int j) { return v[i].energy < v[j].energy; });
+    { std::array<Eigen::Vector2d, 3> xs = {x[o[0]], x[o[1]], x[o[2]]};
+      std::array<Ellipsoidal_evaluation, 3> vs = {std::move(v[o[0]]), std::move(v[o[1]]), std::move(v[o[2]])};
+      x = xs; v = std::move(vs); }
+    ++res.iterations;
+    res.energies.push_back(v[0].energy);
+    if(v[2].energy - v[0].energy <= tolerance * v[0].energy && (x[2] - x[0]).norm() < 0.05) break;
+    const Eigen::Vector2d c = 0.5 * (x[0] + x[1]);
+    const Eigen::Vector2d xr = c + (c - x[2]);
+    Ellipsoidal_evaluation vr = eval(xr);
+    if(vr.energy < v[0].energy) {
+      const Eigen::Vector2d xe = c + 2. * (c - x[2]);
+      Ellipsoidal_evaluation ve = eval(xe);
+      if(ve.energy < vr.energy) { x[2] = xe; v[2] = std::move(ve); } else { x[2] = xr; v[2] = std::move(vr); }
+    } else if(vr.energy < v[1].energy) {
+      x[2] = xr; v[2] = std::move(vr);
+    } else {
+      const bool outside = vr.energy < v[2].energy;
+      const Eigen::Vector2d xc = outside ? Eigen::Vector2d(c + 0.5 * (xr - c)) : Eigen::Vector2d(c + 0.5 * (x[2] - c));
+      Ellipsoidal_evaluation vc = eval(xc);
+      if(vc.energy < (outside ? vr.energy : v[2].energy)) { x[2] = xc; v[2] = std::move(vc); }
+      else { // shrink towards the best vertex
+        for(int i = 1; i < 3; ++i) { x[i] = x[0] + 0.5 * (x[i] - x[0]); v[i] = eval(x[i]); }
+      }
+    }
+  }
+  int b = 0;
+  for(int i = 1; i < 3; ++i) if(v[i].energy < v[b].energy) b = i;
+  res.best = std::move(v[b]);
+  return res;
+}
+
+// ---------------------------------------------------------------------------
+// FEQCM (paper 003 Section 5, ALGORITHMS.md section 6)
+// ---------------------------------------------------------------------------
+
+struct Quasiconformal_result
+{
+  Matrix f;
+  std::size_t passes = 0;
+  bool planar_bijective = true;
+};
+
+/// Landmark-aligned ellipsoidal quasi-conformal map. `landmarks` are vertex
+/// indices, `targets` (k x 3) points on the ellipsoid, `lambda` > 0.
+inline Quasiconformal_result ellipsoidal_quasiconformal(const Ellipsoidal_mapper& mapper, const Eigen::Vector3d& radii,
+                                                        double dilation, const std::vector<Eigen::Index>& landmarks,
+                                                        const Matrix& targets, double lambda,
+                                                        std::size_t max_passes = 500)
+{
+  const Index_matrix& F = mapper.faces();
+  const Eigen::Index n = mapper.input().rows();
+  const Eigen::Index nl = static_cast<Eigen::Index>(landmarks.size());
+  const double t = dilation;
+  const Complex_vector p = t * mapper.chart().p;
+  Quasiconformal_result res;
+
+  // 1-2. psi (of the chart t p, in undilated coordinates), and the planar
+  // targets psi(P^N_abc(q_k)).
+  const Matrix psi = mapper.conformal_correction(radii, t);
+  Matrix tp(nl, 2);
+  for(Eigen::Index k = 0; k < nl; ++k) {
+    const Eigen::Vector3d s = row_vector3(targets, k).cwiseQuotient(radii);
+    const Complex z = north_stereographic(s.normalized());
+    tp(k, 0) = z.real() / t; tp(k, 1) = z.imag() / t;
+  }
+  const Matrix qt = t * mapper.correction_at(psi, tp, landmarks);
+  const Complex_vector qtc = to_complex(qt);
+
+  // 3. Rough alignment by the least-squares similarity z -> s z (closed form).
+  Complex num(0, 0);
+  double den = 0;
+  for(Eigen::Index k = 0; k < nl; ++k) {
+    num += std::conj(p[landmarks[k]]) * qtc[k];
+    den += std::norm(p[landmarks[k]]);
+  }
+  const Complex s = den > 0 ? num / den : Complex(1, 0);
+  const Complex_vector yc = s * p;
+  const Matrix Y = to_planar(yc);
+
+  // Fixed set C: the north face, every vertex strictly outside its triangle,
+  // and the corners of faces whose chart orientation disagrees with the majority.
+  std::vector<char> fixed(static_cast<std::size_t>(n), 0);
+  const Eigen::Index tN = mapper.chart().north_face;
+  {
+    std::vector<Epick::Point_2> P;
+    P.reserve(static_cast<std::size_t>(n));
+    for(Eigen::Index i = 0; i < n; ++i) P.emplace_back(Y(i, 0), Y(i, 1));
+    const Epick::Point_2 &A = P[F(tN, 0)], &B = P[F(tN, 1)], &Cc = P[F(tN, 2)];
+    const CGAL::Orientation o = CGAL::orientation(A, B, Cc);
+    for(Eigen::Index i = 0; i < n; ++i)
+      if(CGAL::orientation(A, B, P[i]) == -o || CGAL::orientation(B, Cc, P[i]) == -o ||
+         CGAL::orientation(Cc, A, P[i]) == -o)
+        fixed[i] = 1;
+    for(int a = 0; a < 3; ++a) fixed[F(tN, a)] = 1;
+    const std::vector<int> orient = planar_orientations(Y, mapper.chart().open_faces);
+    long bal = 0;
+    for(int v : orient) bal += v;
+    const int maj = bal >= 0 ? 1 : -1;
+    for(Eigen::Index k = 0; k < mapper.chart().open_faces.rows(); ++k)
+      if(orient[k] != maj)
+        for(int c = 0; c < 3; ++c) fixed[mapper.chart().open_faces(k, c)] = 1;
+  }
+
+  // 4. Landmark-aligned harmonic map: (L + lambda D) Phi = lambda D q~, Phi_C = y_C.
+  Face_block_assembler assembler(F, n);
+  const Matrix Lblocks = cotangent_stiffness_blocks(Y, F);
+  Vector diag = Vector::Zero(n);
+  Matrix rhs = Matrix::Zero(n, 2);
+  for(Eigen::Index k = 0; k < nl; ++k) {
+    diag[landmarks[k]] += lambda;
+    rhs.row(landmarks[k]) += lambda * qt.row(k);
+  }
+  Matrix Phi;
+  {
+    Sparse_matrix K = assembler.assemble(Lblocks, &diag);
+    apply_dirichlet(K, rhs, fixed, Y);
+    std::unique_ptr<Spd_solver> solver = mapper.prototype().clone();
+    if(!solver->factor(K) || !solver->solve(rhs, Phi)) Phi = Y;
+  }
+
+  // 5. Bijectivity loop: smooth and truncate the Beltrami coefficient, rebuild with LBS.
+  const std::vector<int> source_orientation = planar_orientations(Y, F);
+  auto count_folds = [&](const Matrix& W) {
+    const std::vector<int> o = planar_orientations(W, F);
+    std::size_t c = 0;
+    for(Eigen::Index k = 0; k < F.rows(); ++k) c += (o[k] != source_orientation[k]);
+    return c;
+  };
+  // The composition with the piecewise-linear psi^{-1} can flip a very thin
+  // triangle even when Phi is fold-free: the loop also runs (and keeps
+  // smoothing) while the composed map folds on the ellipsoid.
+  auto compose = [&](const Matrix& W) {
+    const Matrix undilated = W / t;
+    return inverse_ellipsoidal_chart(t * mapper.inverse_correction(psi, undilated), radii);
+  };
+  std::size_t folds = count_folds(Phi);
+  if(folds == 0) {
+    res.f = compose(Phi);
+    folds = count_inverted_faces_about_center(res.f, F);
+  }
+  if(folds > 0) {
+    const Sparse_matrix L = assembler.assemble(Lblocks);
+    std::vector<double> valence(static_cast<std::size_t>(n), 0.);
+    for(Eigen::Index k = 0; k < F.rows(); ++k)
+      for(int c = 0; c < 3; ++c) valence[F(k, c)] += 1;
+    const double alpha = 1, beta = 1, mu_max = 0.99, blend = std::exp(-std::sqrt(lambda) / 4);
+    double penalty = 0.01;
+    std::vector<char> fixed_landmarks = fixed;
+    Matrix values_landmarks = Phi;
+    for(Eigen::Index k = 0; k < nl; ++k) {
+      if(fixed[landmarks[k]]) continue;
+      fixed_landmarks[landmarks[k]] = 1;
+      values_landmarks.row(landmarks[k]) = qt.row(k);
+    }
+    std::unique_ptr<Spd_solver> smooth_solver = mapper.prototype().clone();
+    std::unique_ptr<Spd_solver> lbs_landmarks = mapper.prototype().clone();
+    std::unique_ptr<Spd_solver> lbs_free = mapper.prototype().clone();
+    Sparse_matrix I(n, n);
+    I.setIdentity();
+    Complex_vector mu = beltrami_coefficient(Y, Phi, F);
+    Matrix W = Phi;
+    while(folds > 0 && res.passes < max_passes) {
+      ++res.passes;
+      penalty += 0.5;
+      // smoothing of |mu| by (I + (alpha I + beta/2 L) / penalty), argument kept
+      Complex_vector nu = Complex_vector::Zero(n);
+      for(Eigen::Index k = 0; k < F.rows(); ++k)
+        for(int c = 0; c < 3; ++c) nu[F(k, c)] += mu[k] / valence[F(k, c)];
+      const Sparse_matrix Sm = (1 + alpha / penalty) * I + (beta / (2 * penalty)) * L;
+      Matrix mag(n, 1), m;
+      for(Eigen::Index i = 0; i < n; ++i) mag(i, 0) = std::abs(nu[i]);
+      if(!smooth_solver->factor(Sm) || !smooth_solver->solve(mag, m)) m = mag;
+      for(Eigen::Index i = 0; i < n; ++i) nu[i] = std::abs(nu[i]) > 0 ? nu[i] * (m(i, 0) / std::abs(nu[i])) : Complex(0, 0);
+      Complex_vector mu_s(F.rows());
+      for(Eigen::Index k = 0; k < F.rows(); ++k) mu_s[k] = (nu[F(k, 0)] + nu[F(k, 1)] + nu[F(k, 2)]) / 3.;
+      truncate_beltrami(mu_s, mu_max);
+      // exact landmarks, then blend the two coefficients and solve without landmarks
+      Matrix We;
+      if(!linear_beltrami_solve(Y, F, mu_s, fixed_landmarks, values_landmarks, *lbs_landmarks, We, &assembler)) We = W;
+      const Complex_vector mu_e = beltrami_coefficient(Y, We, F);
+      Complex_vector mu_c = mu_e + blend * (mu_s - mu_e);
+      truncate_beltrami(mu_c, mu_max);
+      Matrix Wn;
+      if(!linear_beltrami_solve(Y, F, mu_c, fixed, Phi, *lbs_free, Wn, &assembler)) break;
+      W = Wn;
+      mu = beltrami_coefficient(Y, W, F);
+      folds = count_folds(W);
+      if(folds == 0) {
+        res.f = compose(W);
+        folds = count_inverted_faces_about_center(res.f, F);
+      }
+    }
+    Phi = W;
+    if(folds > 0) res.f = compose(Phi);
+  }
+  // 6. f = (P^N_abc)^{-1}(psi^{-1}(Phi)) has been composed above.
+  res.planar_bijective = folds == 0;
+  return res;
+}
+
+} // namespace internal
+} // namespace Density_equalizing_maps
+} // namespace CGAL
+
+#endif // CGAL_DENSITY_EQUALIZING_MAPS_INTERNAL_ELLIPSOIDAL_CONFORMAL_H
