@@ -215,13 +215,17 @@ inline void wrap_into_cell(Matrix& u, const Index_matrix& F, Offset_matrix& o, c
 {
   const double pu = t.period_u(), pv = t.period_v();
   std::vector<std::array<int, 2> > shift(static_cast<std::size_t>(u.rows()));
+  const double v_low = -0.5 * pv, v_high = 0.5 * pv;
   for(Eigen::Index i = 0; i < u.rows(); ++i) {
-    const int ku = int(std::floor(u(i, 0) / pu));
-    const int kv = int(std::floor((u(i, 1) + 0.5 * pv) / pv));
-    u(i, 0) -= ku * pu;
-    u(i, 1) -= kv * pv;
-    // guard the half-open cell against round-off at its upper ends
-    if(u(i, 0) >= pu) u(i, 0) -= pu; // never happens after floor unless round-off
+    int ku = int(std::floor(u(i, 0) / pu));
+    int kv = int(std::floor((u(i, 1) - v_low) / pv));
+    double a = u(i, 0) - ku * pu, b = u(i, 1) - kv * pv;
+    // round-off can land exactly on the open upper end: move one more period
+    // (and count it in the offsets); a last ulp below the lower end is clamped
+    if(!(a < pu)) { a -= pu; ++ku; }
+    if(!(b < v_high)) { b -= pv; ++kv; }
+    u(i, 0) = std::max(a, 0.);
+    u(i, 1) = std::max(b, v_low);
     shift[i] = {ku, kv};
   }
   for(Eigen::Index k = 0; k < F.rows(); ++k)

@@ -278,9 +278,10 @@ inline Toroidal_run run_toroidal_density_equalization(const Index_matrix& F, con
   options.stop_on_recoupled_density = true;
   run.engine = run_density_equalization(domain, flow, run.u, population, options,
                                         diffusion_solver ? *diffusion_solver : solver);
-  run.fold_overs = domain.fold_overs(run.u);
   run.offsets = o0;
   wrap_into_cell(run.u, F, run.offsets, t);
+  // certify the output as written (after the wrap), with exact predicates
+  run.fold_overs = count_layout_fold_overs(unrolled_layout(run.u, F, run.offsets, t), orientation);
   return run;
 }
 
