@@ -55,17 +55,34 @@ Mesh_arrays<TriangleMesh> to_arrays(const TriangleMesh& tm, VertexPointMap vpm, 
   a.X.resize(nv, 3);
   a.F.resize(nf, 3);
   a.vertices.resize(nv);
+  // The index map must number the vertices 0..n-1, and num_vertices() /
+  // num_faces() must count the iterated elements. Neither holds for a
+  // Surface_mesh with removed elements before collect_garbage() (the counts
+  // include the removed slots): rows would stay uninitialized. CGAL only
+  // asserts the index map in debug builds, so check here.
+  const std::string garbage_hint = "; for a Surface_mesh with removed elements call collect_garbage() first";
+  std::vector<char> seen(nv, 0);
+  std::size_t iterated = 0;
   for(auto v : vertices(tm)) {
     const std::size_t i = static_cast<std::size_t>(get(vim, v));
+    if(i >= nv || seen[i])
+      throw Invalid_input("the vertex index map does not number the vertices 0.." + std::to_string(nv) +
+                          " - 1 (index " + std::to_string(i) + ")" + garbage_hint);
+    seen[i] = 1;
+    ++iterated;
     const auto& p = get(vpm, v);
     a.X(i, 0) = CGAL::to_double(p.x());
     a.X(i, 1) = CGAL::to_double(p.y());
     a.X(i, 2) = CGAL::to_double(p.z());
     a.vertices[i] = v;
   }
+  if(iterated != nv)
+    throw Invalid_input("the mesh has " + std::to_string(iterated) + " vertices but num_vertices() is " +
+                        std::to_string(nv) + garbage_hint);
   a.faces.reserve(nf);
   std::size_t k = 0;
   for(auto f : faces(tm)) {
+    if(k == nf) break; // reported below
     int c = 0;
     for(auto v : vertices_around_face(halfedge(f, tm), tm)) {
       if(c == 3) break;
@@ -77,6 +94,8 @@ Mesh_arrays<TriangleMesh> to_arrays(const TriangleMesh& tm, VertexPointMap vpm, 
     a.faces.push_back(f);
     ++k;
   }
+  if(k != nf || std::size_t(std::distance(faces(tm).begin(), faces(tm).end())) != nf)
+    throw Invalid_input("the number of faces does not match num_faces() = " + std::to_string(nf) + garbage_hint);
   return a;
 }
 
