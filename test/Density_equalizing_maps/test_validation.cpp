@@ -71,6 +71,23 @@ int main()
     expect_rejected(to_mesh(a), "non-finite", "infinite coordinate");
   }
 
+  // a Surface_mesh with a removed vertex and no collect_garbage(): its built-in
+  // index map has a hole, which must be reported, not written through
+  {
+    Mesh m;
+    const vertex_descriptor extra = m.add_vertex(Point(5, 5, 5));
+    const Arrays a = icosphere_arrays(1);
+    std::vector<vertex_descriptor> v;
+    for(Eigen::Index i = 0; i < a.X.rows(); ++i) v.push_back(m.add_vertex(Point(a.X(i, 0), a.X(i, 1), a.X(i, 2))));
+    for(Eigen::Index k = 0; k < a.F.rows(); ++k) m.add_face(v[a.F(k, 0)], v[a.F(k, 1)], v[a.F(k, 2)]);
+    m.remove_vertex(extra);
+    check(m.has_garbage(), "mesh with garbage built");
+    expect_rejected(m, "collect_garbage", "Surface_mesh with garbage");
+    m.collect_garbage();
+    auto out = m.add_property_map<vertex_descriptor, Point>("v:s").first;
+    check(DEM::spherical_conformal_map(m, out).fold_overs == 0, "after collect_garbage() the mesh maps");
+  }
+
   // the same through mobius_area_correction (it validates the mesh too)
   {
     const Mesh m = open_icosphere();
