@@ -17,7 +17,6 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
-#include <unordered_map>
 #include <vector>
 
 namespace CGAL {
@@ -56,40 +55,48 @@ inline Mesh_topology validate_closed_surface(const Matrix& X, const Index_matrix
                             ", out of range");
 
   // Every directed edge must occur once and its reverse once: anything else is
-  // a boundary, a non-manifold edge or inconsistent orientation.
-  std::unordered_map<long long, int> directed; // key -> count
-  directed.reserve(static_cast<std::size_t>(3 * nf));
+  // a boundary, a non-manifold edge or inconsistent orientation. Sorted
+  // arrays rather than hash maps: this runs on every call, on large meshes.
+  struct Directed { long long key; Eigen::Index face; };
   auto key = [nv](long long i, long long j) { return i * nv + j; };
+  std::vector<Directed> directed;
+  directed.reserve(static_cast<std::size_t>(3 * nf));
   for(Eigen::Index k = 0; k < nf; ++k)
     for(int c = 0; c < 3; ++c) {
       const int i = F(k, c), j = F(k, (c + 1) % 3);
       if(i == j) throw Invalid_input("degenerate " + face_name(k) + ": repeated vertex " + std::to_string(i));
-      if(++directed[key(i, j)] > 1) {
-        if(directed.count(key(j, i)) && directed[key(j, i)] >= 1)
-          throw Invalid_input("non-manifold edge (" + std::to_string(i) + ", " + std::to_string(j) +
-                              ") shared by more than two faces (at " + face_name(k) + ")");
-        throw Invalid_input("inconsistent face orientation or non-manifold edge (" + std::to_string(i) +
-                            ", " + std::to_string(j) + ") at " + face_name(k));
-      }
+      directed.push_back({key(i, j), k});
+    }
+  std::sort(directed.begin(), directed.end(),
+            [](const Directed& a, const Directed& b) { return a.key < b.key || (a.key == b.key && a.face < b.face); });
+  auto find = [&](long long kk) -> const Directed* {
+    auto it = std::lower_bound(directed.begin(), directed.end(), kk,
+                               [](const Directed& d, long long v) { return d.key < v; });
+    return (it != directed.end() && it->key == kk) ? &*it : nullptr;
+  };
+  for(std::size_t e = 1; e < directed.size(); ++e)
+    if(directed[e].key == directed[e - 1].key) {
+      const long long i = directed[e].key / nv, j = directed[e].key % nv;
+      const bool both_ways = find(key(j, i)) != nullptr;
+      throw Invalid_input(std::string(both_ways ? "non-manifold edge (" : "inconsistent face orientation or non-manifold edge (") +
+                          std::to_string(i) + ", " + std::to_string(j) + ")" +
+                          (both_ways ? " shared by more than two faces" : "") + " (at " + face_name(directed[e].face) + ")");
     }
   for(Eigen::Index k = 0; k < nf; ++k)
     for(int c = 0; c < 3; ++c) {
       const int i = F(k, c), j = F(k, (c + 1) % 3);
-      auto it = directed.find(key(j, i));
-      if(it == directed.end())
+      if(!find(key(j, i)))
         throw Invalid_input("open boundary: edge (" + std::to_string(i) + ", " + std::to_string(j) + ") of " +
                             face_name(k) + " has no opposite face; the mesh must be closed");
     }
+  auto face_of_edge = [&](long long i, long long j) { return find(key(i, j))->face; };
 
   // Non-manifold vertices: the faces around a vertex must form one fan.
   std::vector<int> incident(static_cast<std::size_t>(nv), 0);
-  std::unordered_map<long long, Eigen::Index> face_of_edge; // directed edge -> face
-  face_of_edge.reserve(directed.size());
   for(Eigen::Index k = 0; k < nf; ++k)
-    for(int c = 0; c < 3; ++c) {
-      ++incident[F(k, c)];
-      face_of_edge[key(F(k, c), F(k, (c + 1) % 3))] = k;
-    }
+    for(int c = 0; c < 3; ++c) ++incident[F(k, c)];
+  for(Eigen::Index i = 0; i < nv; ++i)
+    if(incident[i] == 0) throw Invalid_input("isolated " + vertex_name(i) + " belongs to no face");
   std::vector<char> visited(static_cast<std::size_t>(nv), 0);
   for(Eigen::Index k = 0; k < nf; ++k)
     for(int c = 0; c < 3; ++c) {
@@ -99,21 +106,15 @@ inline Mesh_topology validate_closed_surface(const Matrix& X, const Index_matrix
       // walk the fan: from face (v, a, b) go to the face containing edge (v, b)
       int count = 0;
       Eigen::Index f = k;
-      int a = F(k, (c + 1) % 3);
       do {
         ++count;
         int cv = 0;
         while(F(f, cv) != v) ++cv;
-        const int b = F(f, (cv + 2) % 3);
-        f = face_of_edge[key(v, b)];
-        a = b;
+        f = face_of_edge(v, F(f, (cv + 2) % 3));
       } while(f != k && count <= incident[v]);
-      (void)a;
       if(count != incident[v])
         throw Invalid_input("non-manifold " + vertex_name(v) + ": its faces form more than one fan");
     }
-  for(Eigen::Index i = 0; i < nv; ++i)
-    if(incident[i] == 0) throw Invalid_input("isolated " + vertex_name(i) + " belongs to no face");
 
   // Connectivity (faces through shared edges).
   {
@@ -124,7 +125,7 @@ inline Mesh_topology validate_closed_surface(const Matrix& X, const Index_matrix
     while(!stack.empty()) {
       Eigen::Index f = stack.back(); stack.pop_back();
       for(int c = 0; c < 3; ++c) {
-        Eigen::Index g = face_of_edge[key(F(f, (c + 1) % 3), F(f, c))];
+        Eigen::Index g = face_of_edge(F(f, (c + 1) % 3), F(f, c));
         if(!seen[g]) { seen[g] = 1; ++reached; stack.push_back(g); }
       }
     }
