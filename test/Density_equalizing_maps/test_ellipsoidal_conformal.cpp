@@ -1,0 +1,189 @@
+// Properties of the ellipsoidal conformal map (FECM), the radii optimization
+// and the ellipsoidal quasi-conformal map (FEQCM); bad input messages.
+#include <CGAL/Simple_cartesian.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/boost/graph/IO/polygon_mesh_io.h>
+
+#include <CGAL/Density_equalizing_maps/ellipsoidal_conformal_map.h>
+#include <CGAL/Density_equalizing_maps/spherical_conformal_map.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+typedef CGAL::Simple_cartesian<double> K;
+typedef K::Point_3 Point;
+typedef CGAL::Surface_mesh<Point> Mesh;
+typedef boost::graph_traits<Mesh>::vertex_descriptor vertex_descriptor;
+namespace DEM = CGAL::Density_equalizing_maps;
+namespace I = DEM::internal;
+
+static int failures = 0;
+#define CHECK(cond, what)                                                         \
+  do {                                                                            \
+    if(!(cond)) { std::cerr << "FAILED: " << what << " (" #cond ")\n"; ++failures; } \
+    else std::cout << "ok: " << what << "\n";                                      \
+  } while(0)
+
+struct Quality { double mu = 0, darea = 0; std::size_t folds = 0; double level = 0; };
+
+static Quality quality(const Mesh& m, const Mesh::Property_map<vertex_descriptor, Point>& out,
+                       const std::array<double, 3>& r)
+{
+  const auto a = I::closed_surface_arrays(m, CGAL::parameters::default_values(), 2);
+  const I::Matrix f = I::read_points(a, out);
+  Quality q;
+  q.mu = I::beltrami_magnitude_3d(a.X, f, a.F).mean();
+  q.darea = I::log_area_ratio(I::face_areas(a.X, a.F), I::face_areas(f, a.F)).cwiseAbs().mean();
+  q.folds = I::count_inverted_faces_about_center(f, a.F);
+  for(Eigen::Index i = 0; i < f.rows(); ++i)
+    q.level = std::max(q.level, std::abs(std::pow(f(i, 0) / r[0], 2) + std::pow(f(i, 1) / r[1], 2) +
+                                         std::pow(f(i, 2) / r[2], 2) - 1));
+  return q;
+}
+
+template <class F>
+static void expect_invalid(F f, const std::string& fragment, const std::string& what)
+{
+  try {
+    f();
+    CHECK(false, what + ": no exception");
+  } catch(const DEM::Invalid_input& e) {
+    const std::string msg = e.what();
+    CHECK(msg.find(fragment) != std::string::npos, what + " -> \"" + msg + "\"");
+  }
+}
+
+int main()
+{
+  const std::string dir = DEM_DATA_DIR;
+  Mesh brain;
+  if(!std::ifstream(dir + "/brain_landmarks.off") || !CGAL::IO::read_polygon_mesh(dir + "/brain_landmarks.off", brain)) {
+    std::cerr << "shared data not found in " << dir << ": skipped\n";
+    return 77;
+  }
+  auto out = brain.add_property_map<vertex_descriptor, Point>("v:ellipsoid", Point(0, 0, 0)).first;
+
+  // Spherical conformal map: the baseline for the area distortion.
+  auto sph = brain.add_property_map<vertex_descriptor, Point>("v:sphere", Point(0, 0, 0)).first;
+  DEM::spherical_conformal_map(brain, sph);
+  const double sphere_darea = quality(brain, sph, {1., 1., 1.}).darea;
+
+  // FECM with bounding-box radii.
+  const DEM::Map_report rep = DEM::ellipsoidal_conformal_map(brain, out);
+  CHECK(rep.radii.size() == 3, "radii reported");
+  const std::array<double, 3> r = {rep.radii[0], rep.radii[1], rep.radii[2]};
+  const std::array<double, 3> bbox = DEM::bounding_box_ellipsoid_radii(brain);
+  CHECK(std::abs(r[0] - bbox[0]) + std::abs(r[1] - bbox[1]) + std::abs(r[2] - bbox[2]) < 1e-12,
+        "default radii are the bounding-box radii");
+  CHECK(r[2] >= r[0] && r[0] >= r[1], "bounding-box radii ordered c >= a >= b");
+  const Quality q = quality(brain, out, r);
+  std::cout << "FECM: mean|mu| " << q.mu << " mean|d_area| " << q.darea << " (sphere " << sphere_darea << ")\n";
+  CHECK(rep.fold_overs == 0 && q.folds == 0, "FECM has no fold-over");
+  CHECK(q.level < 1e-12, "FECM points lie on the ellipsoid");
+  CHECK(q.mu <= 0.05, "FECM mean |mu| <= 0.05");
+  CHECK(q.darea < sphere_darea, "FECM area distortion below the spherical conformal map's");
+
+  // Radii optimization.
+  const DEM::Map_report ropt = DEM::ellipsoidal_conformal_map(brain, out, DEM::parameters::optimize_radii(true));
+  const std::array<double, 3> ro = {ropt.radii[0], ropt.radii[1], ropt.radii[2]};
+  const Quality qo = quality(brain, out, ro);
+  std::cout << "optimized radii " << ro[0] << " " << ro[1] << " " << ro[2] << ", energy " << ropt.initial_error
+            << " -> " << ropt.final_error << ", mean|d_area| " << qo.darea << "\n";
+  CHECK(ropt.final_error <= ropt.initial_error, "optimized energy <= initial energy");
+  CHECK(qo.darea < q.darea, "optimized radii lower the area distortion");
+  CHECK(ropt.fold_overs == 0 && qo.folds == 0, "optimized FECM has no fold-over");
+  CHECK(qo.level < 1e-12, "optimized FECM points lie on the ellipsoid");
+  CHECK(std::abs((ro[0] + ro[1] + ro[2]) / 3 - 1) < 1e-12, "optimized radii have mean 1");
+
+  // Given radii and poles.
+  // poles along the input's y axis (not the default ones), right along x
+  std::array<vertex_descriptor, 3> poles = {*vertices(brain).begin(), *vertices(brain).begin(), *vertices(brain).begin()};
+  for(vertex_descriptor v : vertices(brain)) {
+    if(brain.point(v).y() > brain.point(poles[0]).y()) poles[0] = v;
+    if(brain.point(v).y() < brain.point(poles[1]).y()) poles[1] = v;
+    if(brain.point(v).x() > brain.point(poles[2]).x()) poles[2] = v;
+  }
+  const DEM::Map_report rg = DEM::ellipsoidal_conformal_map(
+    brain, out, DEM::parameters::combine(DEM::parameters::ellipsoid_radii(std::array<double, 3>{2., 1., 3.}),
+                                       DEM::parameters::pole_vertices(poles)));
+  const Quality qg = quality(brain, out, {2., 1., 3.});
+  std::cout << "given radii/poles: folds " << rg.fold_overs << " level " << qg.level << " mean|mu| " << qg.mu << "\n";
+  CHECK(rg.fold_overs == 0 && qg.level < 1e-12 && qg.mu <= 0.05, "FECM with given radii and poles");
+  std::cout << "right vertex image " << get(out, poles[2]) << "\n";
+  // psi^{-1} moves the right vertex slightly off the plane y = 0, where the Moebius map put it
+  CHECK(get(out, poles[2]).x() > 0 && std::abs(get(out, poles[2]).y()) < 0.1, "right vertex near the +x half-plane");
+
+  // FEQCM: landmark error decreasing in lambda, fold-free, bounded |mu|.
+  std::vector<std::pair<vertex_descriptor, Point>> landmarks;
+  {
+    std::ifstream in(dir + "/brain_landmarks.landmarks.txt");
+    std::string line;
+    while(std::getline(in, line)) {
+      if(line.empty() || line[0] == '#') continue;
+      std::istringstream ss(line);
+      long v; double x, y, z;
+      ss >> v >> x >> y >> z;
+      const double s = 1 / std::sqrt(x * x + y * y + z * z); // the file has 4 decimals
+      landmarks.emplace_back(vertex_descriptor(static_cast<std::uint32_t>(v)),
+                             Point(r[0] * x * s, r[1] * y * s, r[2] * z * s));
+    }
+  }
+  double previous = std::numeric_limits<double>::infinity();
+  for(double lambda : {0.1, 1., 10.}) {
+    const DEM::Map_report lq = DEM::ellipsoidal_quasiconformal_map(brain, landmarks, out,
+                                                                   DEM::parameters::landmark_weight(lambda));
+    const Quality ql = quality(brain, out, r);
+    std::cout << "FEQCM lambda " << lambda << ": landmark error " << lq.landmark_error << " mean|mu| " << ql.mu
+              << " passes " << lq.iterations << "\n";
+    CHECK(lq.fold_overs == 0 && ql.folds == 0, "FEQCM has no fold-over");
+    CHECK(ql.level < 1e-12, "FEQCM points lie on the ellipsoid");
+    CHECK(ql.mu <= 0.1, "FEQCM mean |mu| <= 0.1");
+    CHECK(lq.landmark_error < previous, "FEQCM landmark error decreases with lambda");
+    previous = lq.landmark_error;
+  }
+
+  // Bad input.
+  expect_invalid([&] { DEM::ellipsoidal_conformal_map(brain, out,
+                         DEM::parameters::ellipsoid_radii(std::array<double, 3>{1., 0., 1.})); },
+                 "radii must be positive", "zero radius");
+  expect_invalid([&] { DEM::ellipsoidal_conformal_map(brain, out,
+                         DEM::parameters::ellipsoid_radii(std::array<double, 3>{1., -2., 1.})); },
+                 "radii must be positive", "negative radius");
+  expect_invalid([&] { DEM::ellipsoidal_conformal_map(brain, out, DEM::parameters::pole_vertices(
+                         std::array<vertex_descriptor, 3>{vertex_descriptor(1), vertex_descriptor(1), vertex_descriptor(2)})); },
+                 "must be distinct", "equal pole vertices");
+  expect_invalid([&] { DEM::ellipsoidal_conformal_map(brain, out, DEM::parameters::pole_vertices(
+                         std::array<vertex_descriptor, 3>{vertex_descriptor(1), vertex_descriptor(2),
+                                                          vertex_descriptor(1000000)})); },
+                 "is not a vertex of the mesh", "pole vertex out of range");
+  auto bad = landmarks;
+  bad[0].first = vertex_descriptor(1000000);
+  expect_invalid([&] { DEM::ellipsoidal_quasiconformal_map(brain, bad, out); }, "is not a vertex of the mesh",
+                 "landmark out of range");
+  bad = landmarks;
+  bad[1] = std::make_pair(bad[1].first, Point(0, 0, 0));
+  expect_invalid([&] { DEM::ellipsoidal_quasiconformal_map(brain, bad, out); }, "is not on the ellipsoid",
+                 "landmark target off the ellipsoid");
+  bad = landmarks;
+  bad.push_back(std::make_pair(bad[0].first, bad[0].second));
+  expect_invalid([&] { DEM::ellipsoidal_quasiconformal_map(brain, bad, out); }, "listed more than once",
+                 "landmark listed twice");
+  expect_invalid([&] { DEM::ellipsoidal_quasiconformal_map(brain, std::vector<std::pair<vertex_descriptor, Point>>(),
+                                                           out); },
+                 "no landmarks", "empty landmark set");
+  expect_invalid([&] { DEM::ellipsoidal_quasiconformal_map(brain, landmarks, out,
+                                                           DEM::parameters::landmark_weight(0.)); },
+                 "landmark weight must be positive", "zero landmark weight");
+  Mesh open_mesh = brain;
+  CGAL::Euler::remove_face(halfedge(*faces(open_mesh).begin(), open_mesh), open_mesh);
+  open_mesh.collect_garbage();
+  expect_invalid([&] { DEM::ellipsoidal_conformal_map(open_mesh, out); }, "", "mesh with a hole");
+
+  std::cout << (failures ? "FAILED" : "all passed") << "\n";
+  return failures ? EXIT_FAILURE : EXIT_SUCCESS;
+}
