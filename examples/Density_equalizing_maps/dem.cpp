@@ -113,6 +113,14 @@ private:
   std::chrono::steady_clock::time_point start_;
 };
 
+/// Wall and CPU time of the mapping section.
+struct Stopwatch
+{
+  std::chrono::steady_clock::time_point t0 = std::chrono::steady_clock::now();
+  double c0 = process_cpu_seconds();
+  void stop(double& wall, double& cpu) const { wall = seconds_since(t0); cpu = process_cpu_seconds() - c0; }
+};
+
 /// Result of a method run: the image positions and the report.
 struct Run
 {
@@ -120,6 +128,7 @@ struct Run
   DI::Matrix Y;        // output positions (rows = vertex indices)
   DI::Matrix Y0;       // the method's initial map when dem computed it (else empty)
   double seconds = 0;
+  double cpu_seconds = 0; // CPU time (all threads) of the same section
   std::vector<std::string> notes;
 };
 
@@ -146,9 +155,9 @@ Run run_spherical_conformal(Problem& pb, const Options& opt)
 {
   Run run;
   Point_map out = fresh_point_map(pb.mesh, "v:dem_sphere");
-  const auto t0 = std::chrono::steady_clock::now();
+  const Stopwatch watch;
   run.report = DEM::spherical_conformal_map(pb.mesh, out, NP::mobius_area_correction(opt.mobius));
-  run.seconds = seconds_since(t0);
+  watch.stop(run.seconds, run.cpu_seconds);
   run.Y = to_matrix(pb.mesh, out);
   return run;
 }
@@ -163,7 +172,7 @@ Run run_sdem(Problem& pb, const Options& opt, bool landmark_aligned)
   Point_map init = fresh_point_map(pb.mesh, "v:dem_initial");
   Point_map out = fresh_point_map(pb.mesh, "v:dem_sdem");
   Progress progress(opt.quiet);
-  const auto t0 = std::chrono::steady_clock::now();
+  const Stopwatch watch;
   DEM::spherical_conformal_map(pb.mesh, init, NP::mobius_area_correction(true));
   const auto common = NP::combine(NP::initial_map(init), NP::progress_callback(progress.callback()),
                                   NP::face_population_map(pb.population_map));
@@ -182,7 +191,7 @@ Run run_sdem(Problem& pb, const Options& opt, bool landmark_aligned)
                     NP::density_weight(opt.alpha.value_or(1.)), NP::harmonic_weight(opt.beta.value_or(2.)),
                     NP::landmark_weight(opt.gamma.value_or(5.))));
   }
-  run.seconds = seconds_since(t0);
+  watch.stop(run.seconds, run.cpu_seconds);
   run.Y0 = to_matrix(pb.mesh, init);
   run.Y = to_matrix(pb.mesh, out);
   return run;
@@ -194,52 +203,60 @@ Run run_ellipsoidal_conformal(Problem& pb, const Options& opt)
 {
   Run run;
   Point_map out = fresh_point_map(pb.mesh, "v:dem_ellipsoid");
-  const auto t0 = std::chrono::steady_clock::now();
+  const Stopwatch watch;
   if(opt.radii)
     run.report = DEM::ellipsoidal_conformal_map(
         pb.mesh, out, NP::combine(NP::ellipsoid_radii(*opt.radii), NP::optimize_radii(opt.optimize_radii)));
   else
     run.report = DEM::ellipsoidal_conformal_map(pb.mesh, out, NP::optimize_radii(opt.optimize_radii));
-  run.seconds = seconds_since(t0);
+  watch.stop(run.seconds, run.cpu_seconds);
   run.Y = to_matrix(pb.mesh, out);
   return run;
 }
 
 // Landmark targets given on the unit sphere (as in the shared *.landmarks.txt
-// files) are mapped to the ellipsoid by (x, y, z) -> (a x, b y, c z).
+// files, whose coordinates have 4 decimals, hence the tolerance 1e-4, the one
+// LSDEM accepts) are normalized and mapped to the ellipsoid by
+// (x, y, z) -> (a x, b y, c z). Targets already on the ellipsoid are kept.
 Run run_ellipsoidal_quasiconformal(Problem& pb, const Options& opt)
 {
   Run run;
   const std::array<double, 3> radii = opt.radii ? *opt.radii : DEM::bounding_box_ellipsoid_radii(pb.mesh);
-  bool on_unit_sphere = true;
-  for(const auto& l : pb.landmarks)
-    on_unit_sphere = on_unit_sphere && std::abs(std::sqrt(CGAL::to_double(l.second.x() * l.second.x() +
-                                                                          l.second.y() * l.second.y() +
-                                                                          l.second.z() * l.second.z())) - 1) <= 1e-6;
-  if(on_unit_sphere && !(radii[0] == 1 && radii[1] == 1 && radii[2] == 1)) {
-    for(auto& l : pb.landmarks)
-      l.second = Point_3(radii[0] * l.second.x(), radii[1] * l.second.y(), radii[2] * l.second.z());
-    char buf[200];
+  auto norm = [](const Point_3& p) { return std::sqrt(CGAL::to_double(p.x() * p.x() + p.y() * p.y() + p.z() * p.z())); };
+  auto ellipsoid_level = [&](const Point_3& p) {
+    const double x = p.x() / radii[0], y = p.y() / radii[1], z = p.z() / radii[2];
+    return std::sqrt(x * x + y * y + z * z);
+  };
+  bool on_ellipsoid = true, on_unit_sphere = true;
+  for(const auto& l : pb.landmarks) {
+    on_ellipsoid = on_ellipsoid && std::abs(ellipsoid_level(l.second) - 1) <= 1e-6;
+    on_unit_sphere = on_unit_sphere && std::abs(norm(l.second) - 1) <= 1e-4;
+  }
+  if(!on_ellipsoid && on_unit_sphere) {
+    for(auto& l : pb.landmarks) {
+      const double s = 1 / norm(l.second);
+      l.second = Point_3(radii[0] * s * l.second.x(), radii[1] * s * l.second.y(), radii[2] * s * l.second.z());
+    }
+    char buf[240];
     std::snprintf(buf, sizeof buf, "the landmark targets lie on the unit sphere: mapped to the ellipsoid "
                   "(%.6g, %.6g, %.6g) by (x, y, z) -> (a x, b y, c z)", radii[0], radii[1], radii[2]);
     run.notes.push_back(buf);
   }
   Point_map out = fresh_point_map(pb.mesh, "v:dem_ellipsoid");
-  const auto t0 = std::chrono::steady_clock::now();
+  const Stopwatch watch;
   run.report = DEM::ellipsoidal_quasiconformal_map(
       pb.mesh, pb.landmarks, out,
       NP::combine(NP::ellipsoid_radii(radii), NP::landmark_weight(opt.lambda.value_or(1.))));
-  run.seconds = seconds_since(t0);
+  watch.stop(run.seconds, run.cpu_seconds);
   run.Y = to_matrix(pb.mesh, out);
   return run;
 }
 #endif
 
 #if defined(DEM_HAS_EDEM) && defined(DEM_HAS_ELLIPSOIDAL_CONFORMAL)
-// EDEM starts from the ellipsoidal conformal map with the same radii (the
-// library's default), computed here and handed over so that the initial
-// density variance is measured on it. EDEQ starts from the conformal map with
-// the initial radii; it is computed for the metrics only (outside the timing).
+// EDEM and EDEQ start from the ellipsoidal conformal map with the (initial)
+// radii, the library's default; it is computed here and handed over, so that
+// the initial density variance is measured on the map the iteration starts from.
 Run run_edem(Problem& pb, const Options& opt, bool quasiconformal)
 {
   Run run;
@@ -247,27 +264,24 @@ Run run_edem(Problem& pb, const Options& opt, bool quasiconformal)
   Point_map out = fresh_point_map(pb.mesh, "v:dem_edem");
   Progress progress(opt.quiet);
   const std::array<double, 3> radii = *opt.radii;
-  if(!quasiconformal) {
-    const auto t0 = std::chrono::steady_clock::now();
-    DEM::ellipsoidal_conformal_map(pb.mesh, init, NP::ellipsoid_radii(radii));
+  const Stopwatch watch;
+  DEM::ellipsoidal_conformal_map(pb.mesh, init, NP::ellipsoid_radii(radii));
+  const auto common = NP::combine(NP::ellipsoid_radii(radii), NP::initial_map(init),
+                                  NP::face_population_map(pb.population_map),
+                                  NP::progress_callback(progress.callback()),
+                                  NP::time_step(opt.time_step.value_or(0.1)));
+  if(!quasiconformal)
     run.report = DEM::ellipsoidal_density_equalizing_map(
         pb.mesh, out,
-        NP::combine(NP::ellipsoid_radii(radii), NP::initial_map(init), NP::face_population_map(pb.population_map),
-                    NP::progress_callback(progress.callback()), NP::time_step(opt.time_step.value_or(0.1)),
-                    NP::stopping_tolerance(opt.tolerance.value_or(1e-3)),
+        NP::combine(common, NP::stopping_tolerance(opt.tolerance.value_or(1e-3)),
                     CGAL::parameters::number_of_iterations(opt.max_iterations.value_or(300))));
-    run.seconds = seconds_since(t0);
-  } else {
-    const auto t0 = std::chrono::steady_clock::now();
+  else
     run.report = DEM::ellipsoidal_density_equalizing_quasiconformal_map(
         pb.mesh, out,
-        NP::combine(NP::ellipsoid_radii(radii), NP::face_population_map(pb.population_map),
-                    NP::progress_callback(progress.callback()), NP::beltrami_weight(opt.alpha.value_or(5.)),
-                    NP::time_step(opt.time_step.value_or(0.1)), NP::stopping_tolerance(opt.tolerance.value_or(1e-5)),
+        NP::combine(common, NP::beltrami_weight(opt.alpha.value_or(5.)),
+                    NP::stopping_tolerance(opt.tolerance.value_or(1e-5)),
                     CGAL::parameters::number_of_iterations(opt.max_iterations.value_or(300))));
-    run.seconds = seconds_since(t0);
-    DEM::ellipsoidal_conformal_map(pb.mesh, init, NP::ellipsoid_radii(radii));
-  }
+  watch.stop(run.seconds, run.cpu_seconds);
   run.Y0 = to_matrix(pb.mesh, init);
   run.Y = to_matrix(pb.mesh, out);
   return run;
@@ -285,14 +299,14 @@ Run run_toroidal(Problem& pb, const Options& opt, bool parameterization)
       NP::progress_callback(progress.callback()), NP::time_step(opt.time_step.value_or(0.1)),
       NP::stopping_tolerance(opt.tolerance.value_or(1e-2)),
       CGAL::parameters::number_of_iterations(opt.max_iterations.value_or(1000)));
-  const auto t0 = std::chrono::steady_clock::now();
+  const Stopwatch watch;
   if(!parameterization)
     run.report = DEM::toroidal_density_equalizing_map(pb.mesh, out, common);
   else if(!pb.cut_edges.empty())
     run.report = DEM::toroidal_parameterization(pb.mesh, out, NP::combine(NP::cut_edges(pb.cut_edges), common));
   else
     run.report = DEM::toroidal_parameterization(pb.mesh, out, common);
-  run.seconds = seconds_since(t0);
+  watch.stop(run.seconds, run.cpu_seconds);
   run.Y = to_matrix(pb.mesh, out);
   return run;
 }
@@ -467,7 +481,8 @@ int main(int argc, char** argv)
     mi.landmark_index = &landmark_index;
     mi.landmark_targets = &targets;
   }
-  const Metrics m = compute_metrics(method_name(opt.method), run.report, run.seconds, mi);
+  Metrics m = compute_metrics(method_name(opt.method), run.report, run.seconds, mi);
+  m.cpu_seconds = run.cpu_seconds;
 
   if(!opt.metrics.empty() && !write_metrics_json(opt.metrics, m)) {
     std::cerr << "dem: cannot write " << opt.metrics << "\n";
