@@ -9,6 +9,7 @@
 // Moebius area correction (section 4), on index arrays.
 
 #include <CGAL/Density_equalizing_maps/internal/beltrami.h>
+#include <CGAL/Density_equalizing_maps/internal/ellipsoid_domain.h>
 #include <CGAL/Density_equalizing_maps/internal/fold_overs.h>
 #include <CGAL/Density_equalizing_maps/internal/projections.h>
 
@@ -129,6 +130,28 @@ inline Flash_result flash_spherical_map(const Matrix& X, const Index_matrix& F, 
   if(!solved) w = P;
   res.south_w = to_complex(w);
   res.S = inverse_south_chart(res.south_w);
+
+  // On coarse meshes with many obtuse angles (negative cotangent weights) the
+  // harmonic step can fold. Then start from the Tutte embedding (convex
+  // weights: an embedding) and move towards the conformal map with the
+  // fold-over repair of the density engine: the Beltrami coefficients of the
+  // conformal map are kept wherever they are admissible, flipped faces get
+  // truncated ones, and the step is shortened if the repair cannot succeed.
+  if(count_inverted_faces_about_center(res.S, F) > 0) {
+    const Complex tutte_corners[3] = {Complex(1, 0), std::polar(1., 2 * M_PI / 3), std::polar(1., 4 * M_PI / 3)};
+    std::unique_ptr<Spd_solver> s4 = prototype.clone();
+    Complex_vector zt;
+    if(punctured_harmonic_map(graph_laplacian(F, n), F, t, tutte_corners, *s4, zt) && balance_and_lift(zt) &&
+       count_inverted_faces_about_center(S, F) == 0) {
+      const Matrix tutte = S;
+      Ellipsoid_domain sphere(F, tutte, Eigen::Vector3d::Ones(), 0.1, prototype);
+      Step_statistics stats;
+      Matrix repaired;
+      res.S = sphere.advance(tutte, res.S - tutte, 1., repaired, stats) ? repaired : tutte;
+      res.tutte = true;
+      for(Eigen::Index i = 0; i < n; ++i) res.south_w[i] = south_stereographic(row_vector3(res.S, i));
+    }
+  }
   return res;
 }
 
