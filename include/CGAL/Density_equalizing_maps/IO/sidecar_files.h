@@ -103,6 +103,8 @@ void read_from_file(const std::string& filename, Reader reader)
 /// \param in the stream
 /// \param expected_count number of faces of the mesh, or 0 for no check
 /// \param source name used in messages (e.g. the file name)
+/// \returns the values in file order
+/// \throws Invalid_input naming the line and the problem
 inline std::vector<double> read_face_values(std::istream& in, std::size_t expected_count = 0,
                                             const std::string& source = "population")
 {
@@ -130,6 +132,9 @@ inline std::vector<double> read_face_values(std::istream& in, std::size_t expect
 
 /// \ingroup PkgDensityEqualizingMapsIO
 /// File version of `read_face_values()`; messages name the file.
+/// \param filename the file to read
+/// \param expected_count number of faces of the mesh, or 0 for no check
+/// \returns the values in file order
 inline std::vector<double> read_face_values(const std::string& filename, std::size_t expected_count)
 {
   std::vector<double> v;
@@ -143,6 +148,10 @@ inline std::vector<double> read_face_values(const std::string& filename, std::si
 /// Reads landmarks, lines `vertex_index x y z` (0-based index). Rejects
 /// malformed lines, non-finite coordinates, an index `>= number_of_vertices`
 /// (when that is not zero) and a vertex given twice. An empty file is an error.
+/// \param in the stream
+/// \param number_of_vertices number of vertices of the mesh, or 0 for no check
+/// \param source name used in messages (e.g. the file name)
+/// \returns the landmarks in file order
 inline std::vector<Indexed_landmark> read_landmarks(std::istream& in, std::size_t number_of_vertices = 0,
                                                     const std::string& source = "landmarks")
 {
@@ -180,6 +189,9 @@ inline std::vector<Indexed_landmark> read_landmarks(std::istream& in, std::size_
 
 /// \ingroup PkgDensityEqualizingMapsIO
 /// File version of `read_landmarks()`.
+/// \param filename the file to read
+/// \param number_of_vertices number of vertices of the mesh, or 0 for no check
+/// \returns the landmarks in file order
 inline std::vector<Indexed_landmark> read_landmarks(const std::string& filename, std::size_t number_of_vertices)
 {
   std::vector<Indexed_landmark> v;
@@ -193,6 +205,10 @@ inline std::vector<Indexed_landmark> read_landmarks(const std::string& filename,
 /// Reads vertex pairs `i j` (0-based), e.g. the edges of a cut graph. Rejects
 /// malformed lines, an index `>= number_of_vertices` (when that is not zero)
 /// and a pair `i i`. Whether the pairs are mesh edges is checked by the method.
+/// \param in the stream
+/// \param number_of_vertices number of vertices of the mesh, or 0 for no check
+/// \param source name used in messages (e.g. the file name)
+/// \returns the pairs in file order
 inline std::vector<std::pair<std::size_t, std::size_t>>
 read_vertex_pairs(std::istream& in, std::size_t number_of_vertices = 0, const std::string& source = "cut edges")
 {
@@ -219,6 +235,9 @@ read_vertex_pairs(std::istream& in, std::size_t number_of_vertices = 0, const st
 
 /// \ingroup PkgDensityEqualizingMapsIO
 /// File version of `read_vertex_pairs()`.
+/// \param filename the file to read
+/// \param number_of_vertices number of vertices of the mesh, or 0 for no check
+/// \returns the pairs in file order
 inline std::vector<std::pair<std::size_t, std::size_t>> read_vertex_pairs(const std::string& filename,
                                                                            std::size_t number_of_vertices)
 {
@@ -233,6 +252,9 @@ inline std::vector<std::pair<std::size_t, std::size_t>> read_vertex_pairs(const 
 /// Reads `key=value` lines with numeric values (e.g. `a=1`, `R=3`): blanks
 /// around `=` are allowed; a malformed line, a non-numeric value or a
 /// repeated key is an error.
+/// \param in the stream
+/// \param source name used in messages (e.g. the file name)
+/// \returns the values by key
 inline std::map<std::string, double> read_numeric_parameters(std::istream& in, const std::string& source = "parameters")
 {
   std::map<std::string, double> result;
@@ -259,6 +281,8 @@ inline std::map<std::string, double> read_numeric_parameters(std::istream& in, c
 
 /// \ingroup PkgDensityEqualizingMapsIO
 /// File version of `read_numeric_parameters()`.
+/// \param filename the file to read
+/// \returns the values by key
 inline std::map<std::string, double> read_numeric_parameters(const std::string& filename)
 {
   std::map<std::string, double> v;
