@@ -32,6 +32,8 @@ namespace parameters {
 /// \ingroup PkgDensityEqualizingMapsMeasures
 /// Named parameter: the point about which `number_of_fold_overs()` tests the
 /// orientation of the image faces (default: the origin).
+/// \param t the center point
+/// \returns a named parameter pack holding `t`
 template <typename T>
 CGAL::Named_function_parameters<T, internal_np::center_t> center(const T& t)
 { return CGAL::Named_function_parameters<T, internal_np::center_t>(t); }
@@ -282,6 +284,7 @@ void log_area_ratios(const TriangleMesh& tm, MappedPointMap mapped, FaceValueMap
 /// \cgalNamedParamsEnd
 ///
 /// \throws Invalid_input if a face is not a triangle or the population is not positive and finite
+/// \returns the variances of the normalized vertex and face densities
 template <class TriangleMesh, class MappedPointMap, class NamedParameters = parameters::Default_named_parameters>
 Density_variance density_variance(const TriangleMesh& tm, MappedPointMap mapped,
                                   const NamedParameters& np = parameters::default_values())
@@ -309,6 +312,7 @@ Density_variance density_variance(const TriangleMesh& tm, MappedPointMap mapped,
 /// \param np optional named parameters: `vertex_point_map` (input positions) and
 ///        `vertex_index_map` as for `number_of_fold_overs()`
 /// \throws Invalid_input if a face is not a triangle
+/// \returns the means and standard deviations of `|mu|` and `|d_area|` over the faces
 template <class TriangleMesh, class MappedPointMap, class NamedParameters = parameters::Default_named_parameters>
 Distortion_statistics map_distortion(const TriangleMesh& tm, MappedPointMap mapped,
                                      const NamedParameters& np = parameters::default_values())
