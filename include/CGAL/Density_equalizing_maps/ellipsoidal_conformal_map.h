@@ -87,6 +87,7 @@ void ellipsoid_setup_from_parameters(const TriangleMesh& tm, const NamedParamete
 /// \param tm a closed genus-0 triangle mesh
 /// \param np `vertex_point_map`, `vertex_index_map` as for `spherical_conformal_map()`
 /// \throws Invalid_input if the mesh is invalid or flat
+/// \returns the radii (a, b, c), of mean 1
 template <class TriangleMesh, class NamedParameters = parameters::Default_named_parameters>
 std::array<double, 3> bounding_box_ellipsoid_radii(const TriangleMesh& tm,
                                                    const NamedParameters& np = parameters::default_values())
@@ -225,6 +226,9 @@ Map_report ellipsoidal_conformal_map(const TriangleMesh& tm, VertexPointOutMap e
 /// \ingroup PkgDensityEqualizingMapsEllipsoid
 /// \brief Returns the radii that `ellipsoidal_conformal_map()` finds with `optimize_radii(true)`
 /// (same named parameters; the radii have mean 1).
+/// \param tm a closed genus-0 triangle mesh
+/// \param np the named parameters of `ellipsoidal_conformal_map()`
+/// \returns the optimized radii (a, b, c)
 template <class TriangleMesh, class NamedParameters = parameters::Default_named_parameters>
 std::array<double, 3> optimal_ellipsoid_radii(const TriangleMesh& tm,
                                               const NamedParameters& np = parameters::default_values())

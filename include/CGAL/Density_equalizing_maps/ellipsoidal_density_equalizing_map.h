@@ -168,6 +168,7 @@ Map_report ellipsoidal_density_equalizing_map(const TriangleMesh& tm, VertexPoin
 ///     \cgalParamDefault{1e-5}
 ///   \cgalParamNEnd
 /// \cgalNamedParamsEnd
+/// \returns a `Map_report` with the final radii and the exact fold-over count of the output
 template <class TriangleMesh, class VertexPointOutMap,
           class NamedParameters = parameters::Default_named_parameters>
 Map_report ellipsoidal_density_equalizing_quasiconformal_map(const TriangleMesh& tm, VertexPointOutMap ellipsoid_map,
