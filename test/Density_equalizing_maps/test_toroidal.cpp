@@ -296,6 +296,35 @@ static void test_parameterization_generated()
   check(std::abs(darea[0] - darea[1]) < 0.01, "parameterization does not depend on the cut");
 }
 
+// Faces oriented inward (clockwise in the flat torus) and a user-chosen linear solver.
+static void test_orientation_and_solver()
+{
+  Arrays a = torus_arrays(3, 1, 32, 16);
+  flip_faces(a);
+  Mesh m = to_mesh(a);
+  auto pop = m.add_property_map<face_descriptor, double>("f:pop").first;
+  for(auto f : m.faces()) {
+    const auto h = m.halfedge(f);
+    const Point c = CGAL::centroid(m.point(m.source(h)), m.point(m.target(h)), m.point(m.target(m.next(h))));
+    pop[f] = std::sqrt(CGAL::squared_area(m.point(m.source(h)), m.point(m.target(h)), m.point(m.target(m.next(h))))) *
+             (1.5 + std::sin(std::atan2(c.y(), c.x())));
+  }
+  auto out = m.add_property_map<vertex_descriptor, Point>("v:out").first;
+  typedef CGAL::Eigen_solver_traits<Eigen::SimplicialLDLT<CGAL::Eigen_sparse_matrix<double>::EigenType> > Ldlt;
+  const DEM::Map_report r = DEM::toroidal_density_equalizing_map(
+    m, out, PM::combine(PM::torus_radii(std::array<double, 2>{3, 1}), PM::face_population_map(pop),
+                        PM::sparse_linear_solver(Ldlt())));
+  check(r.converged() && r.fold_overs == 0, "TDEM on an inward-oriented torus with a user solver: converged, fold-free");
+  // the output keeps the input's orientation: exact count in the flat torus, with the flipped sign
+  const Arrays b = from_mesh(m);
+  Matrix Y(b.X.rows(), 3);
+  for(auto v : m.vertices()) Y.row(v.idx()) << out[v].x(), out[v].y(), out[v].z();
+  const I::Torus_radii t{3, 1};
+  Matrix u;
+  const I::Offset_matrix o = I::offsets_from_torus_positions(Y, b.F, t, u);
+  check(I::count_layout_fold_overs(I::unrolled_layout(u, b.F, o, t), -1) == 0, "inward orientation preserved");
+}
+
 static void test_bad_input()
 {
   const auto radii = PM::torus_radii(std::array<double, 2>{3, 1});
@@ -515,6 +544,7 @@ int main()
   test_periodic_lbs_reproduction();
   test_tdem_generated();
   test_parameterization_generated();
+  test_orientation_and_solver();
   test_bad_input();
   test_shared_meshes();
   return finish("test_toroidal");
