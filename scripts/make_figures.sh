@@ -54,8 +54,8 @@ fig_ellipsoidal_density_equalizing_map() {
   c=$(sed -n 's/^c=//p' "$DATA/edem_ellipsoid1.params.txt")
   map_mesh edem "$m" "$WORK/edem1.off" --population "$p" --radii "$a" "$b" "$c" || return 0
   "${RENDER[@]}" "$FIG/ellipsoidal_density_equalizing_map.png" --size 300 \
-    "$m,density=$p,look=dense" "$WORK/edem1.off,density=$p,area_of=$m,look=dense" \
-    "$WORK/edem1.off,density=$p,look=dense,look_ref=$m"
+    "$m,density=$p,az=30,el=10" "$WORK/edem1.off,density=$p,area_of=$m,az=30,el=10" \
+    "$WORK/edem1.off,density=$p,az=30,el=10"
 }
 
 fig_toroidal_density_equalizing_map() {
