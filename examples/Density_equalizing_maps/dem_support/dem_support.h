@@ -132,7 +132,8 @@ inline std::string usage_text()
     "  --metrics FILE             JSON metrics; a one-line summary always goes to stdout\n"
     "  --quiet                    no progress messages on stderr\n"
     "  --help, --version          usage / the build's sparse solver\n"
-    "exit status: 0 done, 2 usage error, 3 invalid input, 4 no fold-over-free map (no output written)\n";
+    "exit status: 0 done, 2 usage error (or method not in this build), 3 invalid input or unwritable file,\n"
+    "             4 no fold-over-free map (metrics written, output not written)\n";
 }
 
 enum class Parse_status { OK, HELP, VERSION, ERROR };
