@@ -16,7 +16,7 @@ BUILD_DIR="${DEM_BUILD_DIR:-$ROOT/build}"
 JOBS="${DEM_JOBS:-$(nproc 2>/dev/null || echo 2)}"
 
 PACKAGES=(libcgal-dev libeigen3-dev libboost-dev libgmp-dev libmpfr-dev
-          libsuitesparse-dev cmake g++ ccache doxygen)
+          libsuitesparse-dev libopenblas0-serial cmake g++ ccache doxygen)
 
 install_missing_packages() {
   if [[ "${DEM_SKIP_DEPS:-0}" == 1 ]]; then return 0; fi

@@ -66,9 +66,12 @@ inline Flash_result flash_spherical_map(const Matrix& X, const Index_matrix& F, 
   // the 3D triangle scaled to a unit base, with the signed real part
   const Complex cot_corners[3] = {Complex(0, 0), Complex(1, 0),
                                   Complex(a.dot(b), a.cross(b).norm()) / a.squaredNorm()};
+  // One pattern (all mesh edges) for the harmonic and the LBS systems: one
+  // assembler, one solver, one symbolic analysis, one factor alive at a time.
+  const Face_block_assembler assembler(F, n);
   std::unique_ptr<Spd_solver> solver = prototype.clone();
   Complex_vector z;
-  bool ok = punctured_harmonic_map(cotangent_laplacian(X, F), F, t, cot_corners, *solver, z);
+  bool ok = punctured_harmonic_map(assembler.assemble(cotangent_stiffness_blocks(X, F)), F, t, cot_corners, *solver, z);
   Matrix S;
   auto balance_and_lift = [&](Complex_vector& zz) {
     zz.array() -= zz.mean();
@@ -95,11 +98,6 @@ inline Flash_result flash_spherical_map(const Matrix& X, const Index_matrix& F, 
       throw Invalid_input("the harmonic and Tutte maps both failed: the mesh is not a valid genus-0 surface");
   }
 
-  // The harmonic map's factor is no longer needed: free it before the LBS
-  // factorization so that only one Cholesky factor is alive at a time (it is
-  // most of the peak memory, about 300 bytes per face).
-  solver.reset();
-
   // South step: quasi-conformal correction in the south chart, where the
   // north step's distortion (near the puncture) sits at the centre.
   std::vector<Eigen::Index> order(static_cast<std::size_t>(n));
@@ -124,8 +122,7 @@ inline Flash_result flash_spherical_map(const Matrix& X, const Index_matrix& F, 
     for(Eigen::Index k = 0; k < F.rows(); ++k)
       if(orient[k] != majority)
         for(int c = 0; c < 3; ++c) fixed[F(k, c)] = 1;
-    std::unique_ptr<Spd_solver> s3 = prototype.clone();
-    solved = linear_beltrami_solve(P, F, mu, fixed, P, *s3, w);
+    solved = linear_beltrami_solve(P, F, mu, fixed, P, *solver, w, &assembler);
   }
   if(!solved) w = P;
   res.south_w = to_complex(w);
