@@ -39,7 +39,7 @@ inline Eigen::Vector3d inverse_south_stereographic(Complex z)
   if(!std::isfinite(z.real()) || !std::isfinite(z.imag())) return Eigen::Vector3d(0, 0, -1);
   const double n = std::norm(z);
   if(n > 1) { // = (P^N)^{-1}(1/conj z) evaluated without overflow
-    const Complex w = 1. / std::conj(z);
+    const Complex w = z / std::norm(z); // = 1 / conj(z), without complex division
     const double m = std::norm(w);
     return Eigen::Vector3d(2 * w.real(), 2 * w.imag(), m - 1) / (1 + m);
   }
@@ -51,7 +51,7 @@ inline Eigen::Vector3d inverse_north_stereographic(Complex z)
 {
   if(!std::isfinite(z.real()) || !std::isfinite(z.imag())) return Eigen::Vector3d(0, 0, 1);
   if(std::norm(z) > 1) { // (P^S)^{-1}(1/conj z)
-    const Complex w = 1. / std::conj(z);
+    const Complex w = z / std::norm(z); // = 1 / conj(z), without complex division
     const double m = std::norm(w);
     return Eigen::Vector3d(2 * w.real(), 2 * w.imag(), 1 - m) / (1 + m);
   }

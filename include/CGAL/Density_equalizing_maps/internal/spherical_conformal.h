@@ -159,7 +159,8 @@ inline Complex mobius_rotation_dilation(Complex z, Complex w0, double s)
 {
   if(!std::isfinite(z.real()) || !std::isfinite(z.imag()))
     return std::norm(w0) == 0 ? z : std::exp(s) / std::conj(w0);
-  return std::exp(s) * (z - w0) / (1. + std::conj(w0) * z);
+  const Complex num = z - w0, den = 1. + std::conj(w0) * z;
+  return (std::exp(s) / std::norm(den)) * (num * std::conj(den)); // real arithmetic: no complex division
 }
 
 /// mean |log(normalized image area / normalized input area)| over faces with finite values.
@@ -227,28 +228,49 @@ inline Matrix mobius_area_correction(const Matrix& X, const Index_matrix& F, con
   const Vector source_area = face_areas(X, F);
   const Complex_vector z = north_chart(S);
   Matrix q(S.rows(), 3);
-  auto apply = [&](const Eigen::Vector3d& xi) {
+  auto apply = [&](const Eigen::Vector3d& xi, const std::vector<Eigen::Index>& vertices) {
     const Complex w0(xi[0], xi[1]);
-    for(Eigen::Index i = 0; i < z.size(); ++i)
+    for(Eigen::Index i : vertices)
       q.row(i) = inverse_north_stereographic(mobius_rotation_dilation(z[i], w0, xi[2])).transpose();
   };
-  auto objective = [&](const Eigen::Vector3d& xi) {
-    if(xi.head<2>().norm() > 1e3 || std::abs(xi[2]) > 50) return std::numeric_limits<double>::infinity();
-    apply(xi);
-    return mean_abs_log_area_ratio(source_area, face_areas(q, F));
+  // The search runs on a sample of about 4000 faces (the objective is a mean
+  // over faces), then is polished on all faces.
+  struct Sample { Index_matrix F; Vector area; std::vector<Eigen::Index> vertices; };
+  auto make_sample = [&](Eigen::Index stride) {
+    Sample smp;
+    const Eigen::Index m = (F.rows() + stride - 1) / stride;
+    smp.F.resize(m, 3);
+    smp.area.resize(m);
+    std::vector<char> used(static_cast<std::size_t>(S.rows()), 0);
+    for(Eigen::Index k = 0, j = 0; k < F.rows(); k += stride, ++j) {
+      smp.F.row(j) = F.row(k);
+      smp.area[j] = source_area[k];
+      for(int c = 0; c < 3; ++c) used[F(k, c)] = 1;
+    }
+    for(Eigen::Index i = 0; i < S.rows(); ++i) if(used[i]) smp.vertices.push_back(i);
+    return smp;
   };
-  const double before = objective(Eigen::Vector3d::Zero());
-  Eigen::Vector3d best = nelder_mead_3(objective, Eigen::Vector3d::Zero(), Eigen::Vector3d(0.2, 0.2, 0.5), 400, 1e-8);
-  // a restart from the optimum escapes an early collapse of the simplex
-  best = nelder_mead_3(objective, best, Eigen::Vector3d(0.05, 0.05, 0.1), 150, 1e-8);
-  const double after = objective(best);
+  auto objective_on = [&](const Sample& smp) {
+    return [&](const Eigen::Vector3d& xi) {
+      if(xi.head<2>().norm() > 1e3 || std::abs(xi[2]) > 50) return std::numeric_limits<double>::infinity();
+      apply(xi, smp.vertices);
+      return mean_abs_log_area_ratio(smp.area, face_areas(q, smp.F));
+    };
+  };
+  const Sample all = make_sample(1);
+  const Sample coarse = make_sample(std::max<Eigen::Index>(1, F.rows() / 4000));
+  const double before = objective_on(all)(Eigen::Vector3d::Zero());
+  Eigen::Vector3d best =
+    nelder_mead_3(objective_on(coarse), Eigen::Vector3d::Zero(), Eigen::Vector3d(0.2, 0.2, 0.5), 400, 1e-8);
+  best = nelder_mead_3(objective_on(all), best, Eigen::Vector3d(0.02, 0.02, 0.05), 120, 1e-8);
+  const double after = objective_on(all)(best);
   if(objective_before) *objective_before = before;
   if(!(after <= before)) { // never make it worse
     if(objective_after) *objective_after = before;
     return S;
   }
   if(objective_after) *objective_after = after;
-  apply(best);
+  apply(best, all.vertices);
   return q;
 }
 
