@@ -125,8 +125,7 @@ Map_report ellipsoidal_density_equalizing_map(const TriangleMesh& tm, VertexPoin
   const Eigen::Vector3d radii = internal::ellipsoid_radii_from_parameters(a, np);
   const internal::Vector population = internal::population_from_parameters(a, np);
   const internal::Engine_options options = internal::engine_options_from_parameters(np, 0.1, 1e-3, 300);
-  const double truncation = choose_parameter(get_parameter(np, internal_np::truncation), 0.1);
-  if(!(truncation > 0 && truncation < 1)) throw Invalid_input("truncation must lie in (0, 1)");
+  const double truncation = internal::truncation_from_parameters(np);
   const auto solver = internal::solver_from_parameters(np);
 
   std::string note;
@@ -180,8 +179,7 @@ Map_report ellipsoidal_density_equalizing_quasiconformal_map(const TriangleMesh&
   const Eigen::Vector3d radii = internal::ellipsoid_radii_from_parameters(a, np);
   const internal::Vector population = internal::population_from_parameters(a, np);
   const internal::Engine_options options = internal::engine_options_from_parameters(np, 0.1, 1e-5, 300);
-  const double truncation = choose_parameter(get_parameter(np, internal_np::truncation), 0.1);
-  if(!(truncation > 0 && truncation < 1)) throw Invalid_input("truncation must lie in (0, 1)");
+  const double truncation = internal::truncation_from_parameters(np);
   const double alpha = choose_parameter(get_parameter(np, internal_np::beltrami_weight), 5.);
   if(!(alpha >= 0) || !std::isfinite(alpha)) throw Invalid_input("beltrami_weight must be non-negative");
   const auto solver = internal::solver_from_parameters(np);

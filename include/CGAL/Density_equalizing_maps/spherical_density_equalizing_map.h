@@ -115,8 +115,7 @@ Map_report spherical_density_equalizing_map(const TriangleMesh& tm, VertexPointO
   const auto a = internal::closed_surface_arrays(tm, np, 2);
   const internal::Vector population = internal::population_from_parameters(a, np);
   const internal::Engine_options options = internal::engine_options_from_parameters(np, 0.1, 1e-3, 200);
-  const double truncation = choose_parameter(get_parameter(np, internal_np::truncation), 0.1);
-  if(!(truncation > 0 && truncation < 1)) throw Invalid_input("truncation must lie in (0, 1)");
+  const double truncation = internal::truncation_from_parameters(np);
   const auto solver = internal::solver_from_parameters(np);
 
   internal::Matrix x = internal::initial_spherical_map(a, np, *solver);
@@ -185,8 +184,7 @@ Map_report landmark_aligned_spherical_density_equalizing_map(const TriangleMesh&
   const auto a = internal::closed_surface_arrays(tm, np, 2);
   const internal::Vector population = internal::population_from_parameters(a, np);
   const internal::Engine_options options = internal::engine_options_from_parameters(np, 0.01, 1e-3, 200);
-  const double truncation = choose_parameter(get_parameter(np, internal_np::truncation), 0.1);
-  if(!(truncation > 0 && truncation < 1)) throw Invalid_input("truncation must lie in (0, 1)");
+  const double truncation = internal::truncation_from_parameters(np);
 
   internal::Landmark_flow flow;
   internal::read_landmarks(tm, landmarks, np, flow.vertices, flow.targets);

@@ -38,6 +38,17 @@ Engine_options engine_options_from_parameters(const NamedParameters& np, double 
   return o;
 }
 
+/// The truncation of inverted faces' Beltrami coefficients in the repair step.
+template <class NamedParameters>
+double truncation_from_parameters(const NamedParameters& np)
+{
+  using CGAL::parameters::choose_parameter;
+  using CGAL::parameters::get_parameter;
+  const double truncation = choose_parameter(get_parameter(np, internal_np::truncation), 0.1);
+  if(!(truncation > 0 && truncation < 1)) throw Invalid_input("truncation must lie in (0, 1)");
+  return truncation;
+}
+
 inline void fill_report(const Engine_result& r, Map_report& report)
 {
   report.termination = r.termination;
