@@ -329,13 +329,14 @@ Map_report ellipsoidal_quasiconformal_map(const TriangleMesh& tm, const Landmark
 
   const auto solver = internal::solver_from_parameters(np);
   const bool dilate = choose_parameter(get_parameter(np, internal_np::mobius_area_correction), true);
+  const internal::Flash_result flash = internal::flash_spherical_map(a.X, a.F, *solver);
   if(!poles_given) { // orient the conformal map like the targets before pulling the landmarks
-    const internal::Ellipsoidal_mapper first(a.X, a.F, poles, *solver);
+    const internal::Ellipsoidal_mapper first(a.X, a.F, poles, *solver, flash);
     const internal::Matrix f0 =
       internal::evaluate_ellipsoidal_conformal(first, radii, internal::face_areas(a.X, a.F), dilate).f;
     poles = internal::landmark_aligned_pole_vertices(f0, radii, idx, targets);
   }
-  const internal::Ellipsoidal_mapper mapper(a.X, a.F, poles, *solver);
+  const internal::Ellipsoidal_mapper mapper(a.X, a.F, poles, *solver, flash);
   const double t =
     dilate ? internal::evaluate_ellipsoidal_conformal(mapper, radii, internal::face_areas(a.X, a.F), true).dilation : 1.;
   const internal::Quasiconformal_result res =

@@ -25,6 +25,7 @@
 #include <CGAL/Density_equalizing_maps/internal/spherical_conformal.h>
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SVD>
 
 #include <algorithm>
@@ -306,13 +307,15 @@ private:
 };
 
 /// For every vertex i, the values (n x 2) interpolated at queries[i] in the
-/// located face of `locator`; where queries[i] lies outside the domain the
-/// query itself is returned (the maps interpolated here are the identity on
-/// the domain's boundary, so this extends them continuously). Queries are
+/// located face of `locator`; where queries[i] lies outside the domain,
+/// `outside_map(query)` (the maps interpolated here are known in closed form
+/// on the domain's boundary, and this extends them continuously). Queries are
 /// processed in breadth-first order, each walk starting at the parent's face.
-inline Matrix interpolate_at_vertex_queries(const Planar_point_locator& locator, const Matrix& values,
-                                            const Matrix& queries, const std::vector<Eigen::Index>& order,
-                                            const std::vector<Eigen::Index>& parent, std::size_t* outside = nullptr)
+template <class OutsideMap>
+Matrix interpolate_at_vertex_queries(const Planar_point_locator& locator, const Matrix& values,
+                                     const Matrix& queries, const std::vector<Eigen::Index>& order,
+                                     const std::vector<Eigen::Index>& parent, OutsideMap outside_map,
+                                     std::size_t* outside = nullptr)
 {
   const Eigen::Index n = queries.rows();
   const Index_matrix& F = locator.faces();
@@ -327,7 +330,7 @@ inline Matrix interpolate_at_vertex_queries(const Planar_point_locator& locator,
     const Eigen::Vector2d q(queries(i, 0), queries(i, 1));
     const Eigen::Index f = locator.locate(q, start);
     located[i] = f;
-    if(f < 0) { out.row(i) = q.transpose(); ++n_out; continue; }
+    if(f < 0) { out.row(i) = outside_map(q).transpose(); ++n_out; continue; }
     last = f;
     const Eigen::Vector3d l = locator.barycentric(f, q);
     out.row(i) = l[0] * values.row(F(f, 0)) + l[1] * values.row(F(f, 1)) + l[2] * values.row(F(f, 2));
@@ -366,12 +369,12 @@ struct Ellipsoidal_chart
 inline double perimeter(Complex a, Complex b, Complex c) { return std::abs(a - b) + std::abs(b - c) + std::abs(c - a); }
 
 /// Steps 1-4 of FECM: FLASH, Moebius normalization of the poles, balancing.
+/// Steps 2-4 from a FLASH result (which does not depend on the poles).
 inline Ellipsoidal_chart ellipsoidal_chart(const Matrix& X, const Index_matrix& F,
-                                           const std::array<Eigen::Index, 3>& poles, const Spd_solver& prototype)
+                                           const std::array<Eigen::Index, 3>& poles, const Flash_result& flash)
 {
   Ellipsoidal_chart ch;
   ch.poles = poles;
-  const Flash_result flash = flash_spherical_map(X, F, prototype);
   ch.tutte = flash.tutte;
   ch.north_face = pole_face(X, F, poles[0], -1);
   ch.south_face = pole_face(X, F, poles[1], ch.north_face);
@@ -432,6 +435,14 @@ inline Complex inverse_ellipsoidal_projection_beltrami(Complex z, const Eigen::V
   return Complex(E - G, 2 * Fm) / den;
 }
 
+/// The maps interpolated by point location are the identity on the outer
+/// triangle of psi's triangulation (pinned there), so they are extended by the
+/// identity beyond it (only chart points near the north pole get there).
+struct Identity_outside
+{
+  Eigen::Vector2d operator()(const Eigen::Vector2d& q) const { return q; }
+};
+
 inline void check_radii(const Eigen::Vector3d& r)
 {
   for(int c = 0; c < 3; ++c)
@@ -447,9 +458,15 @@ class Ellipsoidal_mapper
 public:
   Ellipsoidal_mapper(const Matrix& X, const Index_matrix& F, const std::array<Eigen::Index, 3>& poles,
                      const Spd_solver& prototype)
-    : m_X(X), m_F(F), m_prototype(prototype.clone())
+    : Ellipsoidal_mapper(X, F, poles, prototype, flash_spherical_map(X, F, prototype))
+  {}
+
+  /// With a FLASH map of (X, F) already computed (it does not depend on the poles).
+  Ellipsoidal_mapper(const Matrix& X, const Index_matrix& F, const std::array<Eigen::Index, 3>& poles,
+                     const Spd_solver& prototype, const Flash_result& flash)
+    : m_X(X), m_F(F), m_prototype(prototype.clone()), m_flash(flash)
   {
-    m_chart = ellipsoidal_chart(X, F, poles, prototype);
+    m_chart = ellipsoidal_chart(X, F, poles, flash);
     m_P = to_planar(m_chart.p);
     m_open_assembler.build(m_chart.open_faces, X.rows());
     m_psi_solver = prototype.clone();
@@ -484,6 +501,7 @@ public:
   const std::vector<Eigen::Index>& order() const { return m_order; }
   const std::vector<Eigen::Index>& parent() const { return m_parent; }
   const Spd_solver& prototype() const { return *m_prototype; }
+  const Flash_result& flash() const { return m_flash; }
 
   /// psi = LBS(mu of (P^N_abc)^{-1}) for the chart dilated by t, identity on
   /// the pinned set, expressed in undilated coordinates: the LBS stiffness is
@@ -504,15 +522,22 @@ public:
     return psi;
   }
 
-  /// psi^{-1}(queries) for per-vertex queries (n x 2) in the chart plane.
-  Matrix inverse_correction(const Matrix& psi, const Matrix& queries, std::size_t* outside = nullptr) const
+  /// psi^{-1}(queries) for per-vertex queries (n x 2) in the chart plane
+  /// (psi computed for `radii` and dilation t, undilated coordinates).
+  Matrix inverse_correction(const Matrix& psi, const Matrix& queries, const Eigen::Vector3d& radii, double t,
+                            std::size_t* outside = nullptr) const
   {
     const Planar_point_locator locator(psi, m_chart.open_faces);
-    return interpolate_at_vertex_queries(locator, m_P, queries, m_order, m_parent, outside);
+    return interpolate_at_vertex_queries(locator, m_P, queries, m_order, m_parent,
+                                         inverse_outside_map(radii, t), outside);
   }
 
+  /// psi^{-1} beyond psi's triangulation.
+  static Identity_outside inverse_outside_map(const Eigen::Vector3d&, double) { return Identity_outside(); }
+
   /// psi at arbitrary chart points: locate in (p, F'), interpolate psi; identity outside.
-  Matrix correction_at(const Matrix& psi, const Matrix& points, const std::vector<Eigen::Index>& start_vertices) const
+  Matrix correction_at(const Matrix& psi, const Matrix& points, const std::vector<Eigen::Index>& start_vertices,
+                       const Eigen::Vector3d& /*radii*/, double /*t*/) const
   {
     const Planar_point_locator locator(m_P, m_chart.open_faces);
     Matrix out(points.rows(), 2);
@@ -531,6 +556,7 @@ private:
   const Matrix& m_X;
   const Index_matrix& m_F;
   std::unique_ptr<Spd_solver> m_prototype;
+  Flash_result m_flash;
   Ellipsoidal_chart m_chart;
   Matrix m_P;
   Face_block_assembler m_open_assembler;
@@ -555,7 +581,7 @@ inline Matrix ellipsoidal_conformal(const Ellipsoidal_mapper& mapper, const Eige
                                     Matrix* preimage = nullptr)
 {
   const Matrix psi = mapper.conformal_correction(radii, t);
-  const Matrix pre = t * mapper.inverse_correction(psi, mapper.planar_chart());
+  const Matrix pre = t * mapper.inverse_correction(psi, mapper.planar_chart(), radii, t);
   if(preimage) *preimage = pre;
   return inverse_ellipsoidal_chart(pre, radii);
 }
@@ -598,7 +624,7 @@ struct Ellipsoidal_evaluation
 inline Ellipsoidal_evaluation evaluate_ellipsoidal_conformal(const Ellipsoidal_mapper& mapper,
                                                              const Eigen::Vector3d& radii, const Vector& source_area,
                                                              bool optimal_dilation, double log_center = 0,
-                                                             double half_width = 2.5)
+                                                             double half_width = 2)
 {
   Ellipsoidal_evaluation e;
   e.radii = radii;
@@ -608,7 +634,8 @@ inline Ellipsoidal_evaluation evaluate_ellipsoidal_conformal(const Ellipsoidal_m
   auto map_at = [&](double t) {
     const Matrix query = t * P;
     return inverse_ellipsoidal_chart(
-      interpolate_at_vertex_queries(locator, P, query, mapper.order(), mapper.parent()), radii);
+      interpolate_at_vertex_queries(locator, P, query, mapper.order(), mapper.parent(),
+                                    Ellipsoidal_mapper::inverse_outside_map(radii, 1.)), radii);
   };
   auto energy = [&](const Matrix& f) {
     const double E = area_energy(source_area, face_areas(f, mapper.faces()));
@@ -617,18 +644,20 @@ inline Ellipsoidal_evaluation evaluate_ellipsoidal_conformal(const Ellipsoidal_m
   e.f = map_at(1.);
   e.energy = energy(e.f);
   if(optimal_dilation) {
+    auto trial = [&](double log_t) {
+      Matrix f = map_at(std::exp(log_t));
+      const double E = energy(f);
+      if(E < e.energy) { e.energy = E; e.f = std::move(f); e.dilation = std::exp(log_t); }
+      return E;
+    };
     const double g = (std::sqrt(5.) - 1) / 2;
     double lo = log_center - half_width, hi = log_center + half_width;
     double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
-    double e1 = energy(map_at(std::exp(x1))), e2 = energy(map_at(std::exp(x2)));
-    while(hi - lo > 0.04) {
-      if(e1 <= e2) { hi = x2; x2 = x1; e2 = e1; x1 = hi - g * (hi - lo); e1 = energy(map_at(std::exp(x1))); }
-      else { lo = x1; x1 = x2; e1 = e2; x2 = lo + g * (hi - lo); e2 = energy(map_at(std::exp(x2))); }
+    double e1 = trial(x1), e2 = trial(x2);
+    while(hi - lo > 0.08) { // E is flat at its minimum: t to a few percent is enough
+      if(e1 <= e2) { hi = x2; x2 = x1; e2 = e1; x1 = hi - g * (hi - lo); e1 = trial(x1); }
+      else { lo = x1; x1 = x2; e1 = e2; x2 = lo + g * (hi - lo); e2 = trial(x2); }
     }
-    const double t = std::exp(0.5 * (lo + hi));
-    Matrix f = map_at(t);
-    const double E = energy(f);
-    if(E < e.energy) { e.f = std::move(f); e.energy = E; e.dilation = t; }
   }
   return e;
 }
@@ -649,7 +678,7 @@ struct Radii_optimization
 /// derivative-free Nelder-Mead simplex on the exact energy is used instead
 /// (2 unknowns, a dozen or two evaluations). Steps 1-4 are computed once.
 inline Radii_optimization optimize_ellipsoid_radii(const Ellipsoidal_mapper& mapper, const Eigen::Vector3d& r0,
-                                                   bool optimal_dilation, std::size_t max_evaluations = 14,
+                                                   bool optimal_dilation, std::size_t max_evaluations = 12,
                                                    double tolerance = 1e-3)
 {
   const Vector source_area = face_areas(mapper.input(), mapper.faces());
@@ -660,7 +689,7 @@ inline Radii_optimization optimize_ellipsoid_radii(const Ellipsoidal_mapper& map
     ++res.evaluations;
     Ellipsoidal_evaluation e = evaluate_ellipsoidal_conformal(mapper, radii_from_log_ratios(u), source_area,
                                                               optimal_dilation, log_dilation, half_width);
-    if(e.energy < best_energy) { best_energy = e.energy; log_dilation = std::log(e.dilation); half_width = 0.6; }
+    if(e.energy < best_energy) { best_energy = e.energy; log_dilation = std::log(e.dilation); half_width = 0.5; }
     return e;
   };
   std::array<Eigen::Vector2d, 3> x;
@@ -742,7 +771,7 @@ inline Quasiconformal_result ellipsoidal_quasiconformal(const Ellipsoidal_mapper
     const Complex z = north_stereographic(s.normalized());
     tp(k, 0) = z.real() / t; tp(k, 1) = z.imag() / t;
   }
-  const Matrix qt = t * mapper.correction_at(psi, tp, landmarks);
+  const Matrix qt = t * mapper.correction_at(psi, tp, landmarks, radii, t);
   const Complex_vector qtc = to_complex(qt);
 
   // 3. Rough alignment by the least-squares similarity z -> s z (closed form).
@@ -810,7 +839,7 @@ inline Quasiconformal_result ellipsoidal_quasiconformal(const Ellipsoidal_mapper
   // smoothing) while the composed map folds on the ellipsoid.
   auto compose = [&](const Matrix& W) {
     const Matrix undilated = W / t;
-    return inverse_ellipsoidal_chart(t * mapper.inverse_correction(psi, undilated), radii);
+    return inverse_ellipsoidal_chart(t * mapper.inverse_correction(psi, undilated, radii, t), radii);
   };
   std::size_t folds = count_folds(Phi);
   if(folds == 0) {
@@ -831,7 +860,6 @@ inline Quasiconformal_result ellipsoidal_quasiconformal(const Ellipsoidal_mapper
       fixed_landmarks[landmarks[k]] = 1;
       values_landmarks.row(landmarks[k]) = qt.row(k);
     }
-    std::unique_ptr<Spd_solver> smooth_solver = mapper.prototype().clone();
     std::unique_ptr<Spd_solver> lbs_landmarks = mapper.prototype().clone();
     std::unique_ptr<Spd_solver> lbs_free = mapper.prototype().clone();
     Sparse_matrix I(n, n);
@@ -846,10 +874,16 @@ inline Quasiconformal_result ellipsoidal_quasiconformal(const Ellipsoidal_mapper
       for(Eigen::Index k = 0; k < F.rows(); ++k)
         for(int c = 0; c < 3; ++c) nu[F(k, c)] += mu[k] / valence[F(k, c)];
       const Sparse_matrix Sm = (1 + alpha / penalty) * I + (beta / (2 * penalty)) * L;
-      Matrix mag(n, 1), m;
-      for(Eigen::Index i = 0; i < n; ++i) mag(i, 0) = std::abs(nu[i]);
-      if(!smooth_solver->factor(Sm) || !smooth_solver->solve(mag, m)) m = mag;
-      for(Eigen::Index i = 0; i < n; ++i) nu[i] = std::abs(nu[i]) > 0 ? nu[i] * (m(i, 0) / std::abs(nu[i])) : Complex(0, 0);
+      // diagonally dominant up to (beta / 2 pi) L: a few preconditioned CG steps instead of a factorization
+      Vector mag(n);
+      for(Eigen::Index i = 0; i < n; ++i) mag[i] = std::abs(nu[i]);
+      Eigen::ConjugateGradient<Sparse_matrix, Eigen::Lower | Eigen::Upper> cg;
+      cg.setTolerance(1e-10);
+      cg.setMaxIterations(500);
+      cg.compute(Sm);
+      Vector m = cg.solveWithGuess(mag, mag);
+      if(!m.allFinite()) m = mag;
+      for(Eigen::Index i = 0; i < n; ++i) nu[i] = std::abs(nu[i]) > 0 ? nu[i] * (m[i] / std::abs(nu[i])) : Complex(0, 0);
       Complex_vector mu_s(F.rows());
       for(Eigen::Index k = 0; k < F.rows(); ++k) mu_s[k] = (nu[F(k, 0)] + nu[F(k, 1)] + nu[F(k, 2)]) / 3.;
       truncate_beltrami(mu_s, mu_max);
