@@ -106,7 +106,7 @@ std::array<double, 3> bounding_box_ellipsoid_radii(const TriangleMesh& tm,
 /// Möbius transformation sending the face at the *top* pole vertex to infinity,
 /// the face at the *bottom* pole vertex to 0 and the *right* vertex onto the
 /// positive real axis; the balancing factor k that gives both polar triangles
-/// equal perimeters; then the quasi-conformal map ψ whose Beltrami coefficient
+/// equal perimeters (paper eq. 29); then the quasi-conformal map ψ whose Beltrami coefficient
 /// is that of the inverse ellipsoidal stereographic projection
 /// \f$(P^N_{abc})^{-1}\f$, computed with the Linear Beltrami Solver on the
 /// chart punctured at the north face. The output is
@@ -116,26 +116,38 @@ std::array<double, 3> bounding_box_ellipsoid_radii(const TriangleMesh& tm,
 /// ellipsoid up to rounding (the authors' code interpolates 3D points instead,
 /// which leaves them slightly inside).
 ///
+/// <b>Dilation</b> (deviation from the paper, on by default, `mobius_area_correction(false)`
+/// restores the paper's map): the balancing factor k only equalizes the two polar
+/// triangles and can leave a large area distortion (mean |d_area| 1.23 instead of 0.71
+/// on maxplanck). Since \f$\Phi = (P^N_{abc})^{-1} \circ \psi^{-1}\f$ is conformal, so is
+/// \f$\Phi(t\,p)\f$ for any t > 0 (a Möbius map that keeps both poles and the right
+/// vertex's direction); t is chosen by a golden-section search on log t minimizing the
+/// area distortion energy below. Each trial only relocates the dilated chart points in
+/// ψ's triangulation (no new linear solve).
+///
 /// <b>Frame.</b> The output lies on the canonical ellipsoid centred at the origin
 /// with axes along x, y, z; it is not expressed in the input's frame. The input
 /// mesh is never modified: its centred principal frame (PCA of the vertex
 /// positions) is used only to choose the default radii and the default poles.
 /// The principal axes are matched by size to the ellipsoid axes (longest
-/// principal axis to the axis of the largest radius, ...). An input that is
-/// already centred and axis-aligned thus keeps its orientation.
+/// principal axis to the axis of the largest radius, ...; with the default radii
+/// the longest goes to z, the middle one to x). An axis-aligned input whose
+/// extents are ordered like the radii thus keeps its orientation (up to the
+/// translation to the origin).
 ///
 /// <b>Radii optimization</b> (`optimize_radii(true)`, paper 003 Sec. 4.4.2): starting
 /// from the given or bounding-box radii, minimizes the area distortion energy
 /// \f$E = \frac{1}{|F|}\sum_T d_T^2\f$ (d_T the log area ratio with both areas
 /// normalized by their exact sums; the paper approximates the ellipsoid area
 /// by Thomsen's formula instead). E is scale invariant, so the radii are
-/// parameterized by (log(a/c), log(b/c)) and scaled to (a + b + c) / 3 = 1. Each
-/// outer iteration minimizes E exactly by Gauss–Newton with Armijo backtracking
-/// with the chart points ψ⁻¹(p) frozen (as the paper's gradient), then
-/// recomputes ψ at the new radii and keeps the step only if the true energy
-/// decreases (halving it in log space up to three times otherwise). Steps up to
-/// the chart are computed once. The report gives the energies before and after
-/// (`initial_error`, `final_error`) and the number of accepted outer steps.
+/// parameterized by (log(a/c), log(b/c)) and scaled to (a + b + c) / 3 = 1. The
+/// paper descends a gradient computed with the chart points ψ⁻¹(p) frozen; that model
+/// ignores how the conformal correction moves points when the radii change and
+/// pointed the wrong way on the shared meshes, so a Nelder–Mead simplex (at most 12
+/// evaluations) minimizes the exact energy instead, each evaluation recomputing ψ and
+/// the dilation for the trial radii. Steps up to the chart are computed once. The
+/// report gives the energies before and after
+/// (`initial_error`, `final_error`) and the number of simplex iterations.
 ///
 /// \tparam TriangleMesh a model of `FaceListGraph`
 /// \tparam VertexPointOutMap a model of `WritablePropertyMap` with the vertex
@@ -163,6 +175,12 @@ std::array<double, 3> bounding_box_ellipsoid_radii(const TriangleMesh& tm,
 ///                           the radii found are scaled to mean 1}
 ///     \cgalParamType{bool}
 ///     \cgalParamDefault{`false`}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{mobius_area_correction}
+///     \cgalParamDescription{choose the dilation t of the pole-normalized chart that minimizes the area
+///                           distortion (the map stays conformal); `false` keeps the paper's balancing factor k}
+///     \cgalParamType{bool}
+///     \cgalParamDefault{`true`}
 ///   \cgalParamNEnd
 ///   \cgalParamNBegin{pole_vertices}
 ///     \cgalParamDescription{three distinct vertices (top, bottom, right): top goes near (0,0,c), bottom near
@@ -259,8 +277,14 @@ std::array<double, 3> optimal_ellipsoid_radii(const TriangleMesh& tm,
 /// until it is fold-free (FLASH-style loop, at most 500 passes). The output is
 /// \f$(P^N_{abc})^{-1} \circ \psi^{-1} \circ \Phi\f$. A larger `landmark_weight`
 /// brings the landmarks closer to their targets at the price of more
-/// conformal distortion. Frame, radii and poles as for `ellipsoidal_conformal_map()`
-/// (the radii are not optimized here).
+/// conformal distortion. Frame, radii and dilation as for `ellipsoidal_conformal_map()`
+/// (the radii are not optimized here). Without `pole_vertices`, the poles are chosen
+/// so that the conformal map is oriented like the targets: an ellipsoidal conformal
+/// map with the default poles is computed, the best rotation (Kabsch) taking its
+/// landmark images to the targets (both pulled back to the unit sphere) is found, and
+/// the poles are the vertices whose rotated images are highest, lowest and furthest
+/// along +x. Landmark targets given in an arbitrary frame (e.g. on a sphere
+/// parameterization) then need no large rotation by Φ.
 ///
 /// \tparam LandmarkRange a range of pairs (vertex descriptor, point with `x()`, `y()`, `z()`),
 ///         e.g. `std::vector<std::pair<vertex_descriptor, Point_3>>`
