@@ -324,9 +324,12 @@ Matrix interpolate_at_vertex_queries(const Planar_point_locator& locator, const 
   std::size_t n_out = 0;
   Eigen::Index last = -1;
   for(const Eigen::Index i : order) {
+    // start next to the parent's answer; after a query outside the domain,
+    // next to the last located one (the vertex's own face can be far from the
+    // query when the chart is dilated)
     Eigen::Index start = parent[i] >= 0 ? located[parent[i]] : -1;
-    if(start < 0) start = locator.incident_face(i);
     if(start < 0) start = last;
+    if(start < 0) start = locator.incident_face(i);
     const Eigen::Vector2d q(queries(i, 0), queries(i, 1));
     const Eigen::Index f = locator.locate(q, start);
     located[i] = f;
