@@ -35,6 +35,7 @@ import statistics
 import subprocess
 import sys
 import tempfile
+import threading
 import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -112,21 +113,28 @@ def sidecar_arguments(method, base, params):
     return args
 
 
-def run_once(cmd, metrics_path):
-    """Runs dem; returns exit code, wall time, CPU time, peak RSS (KiB), metrics, stdout, stderr."""
+def run_once(cmd, metrics_path, timeout=None):
+    """Runs dem; returns exit code, wall time, CPU time, peak RSS (KiB), metrics, stdout, stderr.
+    With a timeout (wall seconds) the run is killed when it exceeds it; the exit code is then "timeout"."""
     if os.path.exists(metrics_path):
         os.remove(metrics_path)
     with tempfile.TemporaryFile() as out, tempfile.TemporaryFile() as err:
         t0 = time.perf_counter()
         p = subprocess.Popen(cmd, stdout=out, stderr=err)
+        timer = threading.Timer(timeout, p.kill) if timeout else None
+        if timer:
+            timer.start()
         _, status, ru = os.wait4(p.pid, 0)
         wall = time.perf_counter() - t0
-        p.returncode = os.waitstatus_to_exitcode(status)
+        timed_out = timer is not None and not timer.is_alive() and wall >= timeout
+        if timer:
+            timer.cancel()
+        p.returncode = "timeout" if timed_out else os.waitstatus_to_exitcode(status)
         out.seek(0)
         err.seek(0)
         stdout, stderr = out.read().decode(errors="replace"), err.read().decode(errors="replace")
     metrics = None
-    if os.path.exists(metrics_path):
+    if os.path.exists(metrics_path) and p.returncode != "timeout":
         with open(metrics_path) as f:
             metrics = json.load(f)
     return p.returncode, wall, ru.ru_utime + ru.ru_stime, ru.ru_maxrss, metrics, stdout, stderr
@@ -159,6 +167,8 @@ def main():
     ap.add_argument("--threads", type=int, default=None,
                     help="set OMP/OPENBLAS/MKL thread counts of the runs (default: inherit)")
     ap.add_argument("--extra", default="", help="extra dem options, e.g. --extra='--mobius'")
+    ap.add_argument("--timeout", type=float, default=None,
+                    help="kill a run after this many wall seconds (recorded with exit code 'timeout')")
     a = ap.parse_args()
 
     dem = a.dem or os.path.join(a.build_dir, "bin", "dem")
@@ -187,7 +197,7 @@ def main():
             print("$ " + " ".join(cmd), flush=True)
             mesh_runs = []
             for r in range(a.repeat):
-                code, wall, cpu, rss, m, stdout, stderr = run_once(cmd, metrics_path)
+                code, wall, cpu, rss, m, stdout, stderr = run_once(cmd, metrics_path, a.timeout)
                 row = {"mesh": name, "method": method, "run": r, "exit_code": code, "wall_seconds": wall,
                        "cpu_seconds": cpu, "peak_rss_kib": rss, "command": " ".join(cmd)}
                 faces = (m or {}).get("faces")
@@ -201,9 +211,12 @@ def main():
                     print(f"  run {r}: exit {code}: {stderr.strip()}", flush=True)
                 runs.append(row)
                 mesh_runs.append(row)
+                if code == "timeout":
+                    print(f"  run {r}: killed after {wall:.0f} s; no further runs of this mesh", flush=True)
+                    break
             ok = [x for x in mesh_runs if x["seconds"] is not None]
             s = {"mesh": name, "method": method, "runs": len(mesh_runs),
-                 "exit_codes": sorted({x["exit_code"] for x in mesh_runs}),
+                 "exit_codes": sorted({x["exit_code"] for x in mesh_runs}, key=str),
                  "vertices": ok[0]["vertices"] if ok else None, "faces": ok[0]["faces"] if ok else None}
             for k in ("seconds", "map_cpu_seconds", "wall_seconds", "cpu_seconds", "peak_rss_kib", "peak_rss_bytes_per_face",
                       "iterations", "fold_overs", "mean_abs_mu", "mean_abs_darea", "density_var_initial",
