@@ -18,15 +18,18 @@ namespace CGAL {
 namespace Density_equalizing_maps {
 namespace internal {
 
-/// The starting ellipsoidal map: the user's `initial_map`, else the
-/// ellipsoidal conformal map with the same radii. Either is projected radially
-/// onto the ellipsoid and must be bijective. If the conformal map is not, the
-/// spherical conformal map scaled by the radii is used (a linear image of a
-/// bijective spherical map, hence bijective).
+/// The starting ellipsoidal map: the user's `initial_map` (projected radially
+/// onto the ellipsoid; it must be bijective), else the better of two bijective
+/// candidates: the ellipsoidal conformal map with the same radii, and the
+/// Moebius-corrected spherical conformal map scaled by the radii (a linear
+/// image of a bijective spherical map, hence bijective). "Better" is the one
+/// whose density (population / image area) is closer to uniform: on strongly
+/// anisotropic ellipsoids the ellipsoidal conformal map has a large area
+/// distortion and the flow from it is slow to equalize.
 template <class TriangleMesh, class NamedParameters>
 Matrix initial_ellipsoidal_map(const TriangleMesh& tm, const Mesh_arrays<TriangleMesh>& a,
-                               const Eigen::Vector3d& radii, const NamedParameters& np, const Spd_solver& solver,
-                               std::string& note)
+                               const Eigen::Vector3d& radii, const Vector& population, const NamedParameters& np,
+                               const Spd_solver& solver, std::string& note)
 {
   using CGAL::parameters::get_parameter;
   using CGAL::parameters::is_default_parameter;
@@ -41,6 +44,12 @@ Matrix initial_ellipsoidal_map(const TriangleMesh& tm, const Mesh_arrays<Triangl
                           " fold-overs (exact count)");
     return x;
   } else {
+    auto density_error = [&](const Matrix& y) {
+      const Vector area = face_areas(y, a.F);
+      return relative_sd(densities(population, area, face_to_vertex(area, a.F, y.rows())).vertex);
+    };
+    const Matrix scaled_sphere = Ellipsoid_domain::from_unit_sphere(
+      mobius_area_correction(a.X, a.F, flash_spherical_map(a.X, a.F, solver).S), radii);
     typedef CGAL::Exact_predicates_inexact_constructions_kernel::Point_3 Point;
     auto vim = CGAL::get_initialized_vertex_index_map(tm, np);
     boost::vector_property_map<Point, decltype(vim)> fecm(a.vertices.size(), vim);
@@ -48,10 +57,12 @@ Matrix initial_ellipsoidal_map(const TriangleMesh& tm, const Mesh_arrays<Triangl
     ellipsoidal_conformal_map(tm, fecm, parameters::combine(np, parameters::ellipsoid_radii(r)));
     x = read_points(a, fecm);
     project_to_ellipsoid(x, radii);
-    if(x.allFinite() && count_inverted_faces_about_center(x, a.F) == 0) return x;
-    note = "the ellipsoidal conformal map was not bijective; started from the scaled spherical conformal map. ";
-    x = Ellipsoid_domain::from_unit_sphere(flash_spherical_map(a.X, a.F, solver).S, radii);
-    return x;
+    if(x.allFinite() && count_inverted_faces_about_center(x, a.F) == 0 &&
+       density_error(x) <= density_error(scaled_sphere))
+      return x;
+    note = "started from the scaled spherical conformal map (closer to uniform density than the ellipsoidal "
+           "conformal map). ";
+    return scaled_sphere;
   }
 }
 
@@ -129,7 +140,7 @@ Map_report ellipsoidal_density_equalizing_map(const TriangleMesh& tm, VertexPoin
   const auto solver = internal::solver_from_parameters(np);
 
   std::string note;
-  internal::Matrix x = internal::initial_ellipsoidal_map(tm, a, radii, np, *solver, note);
+  internal::Matrix x = internal::initial_ellipsoidal_map(tm, a, radii, population, np, *solver, note);
   internal::Ellipsoid_domain ellipsoid(a.F, x, radii, truncation, *solver);
   internal::Density_flow flow;
   const internal::Engine_result r = internal::run_density_equalization(ellipsoid, flow, x, population, options, *solver);
@@ -185,7 +196,7 @@ Map_report ellipsoidal_density_equalizing_quasiconformal_map(const TriangleMesh&
   const auto solver = internal::solver_from_parameters(np);
 
   std::string note;
-  internal::Matrix x = internal::initial_ellipsoidal_map(tm, a, radii, np, *solver, note);
+  internal::Matrix x = internal::initial_ellipsoidal_map(tm, a, radii, population, np, *solver, note);
   internal::Ellipsoid_domain ellipsoid(a.F, x, radii, truncation, *solver);
   internal::Radii_search_flow flow(a.F, population, x, alpha, options.time_step, *solver);
   flow.energy_old = flow.energy(x);

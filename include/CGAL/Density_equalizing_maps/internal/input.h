@@ -9,6 +9,7 @@
 // all methods, extract the arrays and validate them.
 
 #include <CGAL/Density_equalizing_maps/parameters.h>
+#include <CGAL/Density_equalizing_maps/internal/measures.h>
 #include <CGAL/Density_equalizing_maps/internal/mesh_arrays.h>
 #include <CGAL/Density_equalizing_maps/internal/sparse_solver.h>
 #include <CGAL/Density_equalizing_maps/internal/validation.h>
@@ -29,6 +30,11 @@ Mesh_arrays<TriangleMesh> closed_surface_arrays(const TriangleMesh& tm, const Na
   auto vim = CGAL::get_initialized_vertex_index_map(tm, np);
   Mesh_arrays<TriangleMesh> a = to_arrays(tm, vpm, vim);
   validate_closed_surface(a.X, a.F, euler, euler == 2 ? 4 : 7);
+  // The genus-0 methods build maps whose faces are oriented outward. For an
+  // input oriented inward they work on the reversed triangles, so that the
+  // output keeps the input's orientation (an orientation-preserving map, with
+  // no fold-over relative to the input) instead of being its mirror image.
+  if(euler == 2 && enclosed_volume_sign(a.X, a.F) < 0) a.F.col(1).swap(a.F.col(2));
   return a;
 }
 
