@@ -18,14 +18,22 @@ namespace CGAL {
 namespace Density_equalizing_maps {
 namespace internal {
 
+/// Relative distance tolerance under which an input surface counts as lying
+/// on the target ellipsoid already.
+constexpr double on_ellipsoid_tolerance = 1e-3;
+
 /// The starting ellipsoidal map: the user's `initial_map` (projected radially
-/// onto the ellipsoid; it must be bijective), else the better of two bijective
-/// candidates: the ellipsoidal conformal map with the same radii, and the
-/// Moebius-corrected spherical conformal map scaled by the radii (a linear
-/// image of a bijective spherical map, hence bijective). "Better" is the one
-/// whose density (population / image area) is closer to uniform: on strongly
-/// anisotropic ellipsoids the ellipsoidal conformal map has a large area
-/// distortion and the flow from it is slow to equalize.
+/// onto the ellipsoid; it must be bijective); else the input surface itself
+/// when it already lies on the target ellipsoid (within
+/// `on_ellipsoid_tolerance`) and is star-shaped about its center, as in the
+/// experiments of paper 000 (a cartogram on an ellipsoid starts from the
+/// ellipsoid, not from a conformal re-parameterization of it); else the better
+/// of two bijective candidates: the ellipsoidal conformal map with the same
+/// radii, and the Moebius-corrected spherical conformal map scaled by the radii
+/// (a linear image of a bijective spherical map, hence bijective). "Better" is
+/// the one whose density (population / image area) is closer to uniform: on
+/// strongly anisotropic ellipsoids the ellipsoidal conformal map has a large
+/// area distortion and the flow from it is slow to equalize.
 template <class TriangleMesh, class NamedParameters>
 Matrix initial_ellipsoidal_map(const TriangleMesh& tm, const Mesh_arrays<TriangleMesh>& a,
                                const Eigen::Vector3d& radii, const Vector& population, const NamedParameters& np,
@@ -44,6 +52,14 @@ Matrix initial_ellipsoidal_map(const TriangleMesh& tm, const Mesh_arrays<Triangl
                           " fold-overs (exact count)");
     return x;
   } else {
+    if(max_ellipsoid_deviation(a.X, radii) <= on_ellipsoid_tolerance) {
+      x = a.X;
+      project_to_ellipsoid(x, radii);
+      if(count_inverted_faces_about_center(x, a.F) == 0) {
+        note = "the input lies on the ellipsoid: started from it. ";
+        return x;
+      }
+    }
     auto density_error = [&](const Matrix& y) {
       const Vector area = face_areas(y, a.F);
       return relative_sd(densities(population, area, face_to_vertex(area, a.F, y.rows())).vertex);
@@ -108,7 +124,10 @@ Eigen::Vector3d ellipsoid_radii_from_parameters(const Mesh_arrays<TriangleMesh>&
 ///   \cgalParamNEnd
 ///   \cgalParamNBegin{initial_map}
 ///     \cgalParamDescription{a bijective starting map (projected radially onto the ellipsoid)}
-///     \cgalParamDefault{`ellipsoidal_conformal_map()` with the same radii}
+///     \cgalParamDefault{the input surface itself if it already lies on the ellipsoid (relative distance
+///       at most 1e-3) and every face is seen positively oriented from the center; otherwise
+///       `ellipsoidal_conformal_map()` with the same radii, or the Moebius-corrected spherical conformal map
+///       scaled by the radii if its density is closer to uniform (the report's message says which)}
 ///   \cgalParamNEnd
 ///   \cgalParamNBegin{face_population_map, vertex_density_map, time_step, truncation, progress_callback,
 ///     vertex_point_map, vertex_index_map, sparse_linear_solver}

@@ -13,6 +13,7 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 
@@ -134,14 +135,26 @@ inline Eigen::Matrix3d rotation_to_north_pole(Eigen::Vector3d c)
   return cosine * Eigen::Matrix3d::Identity() + sine * K + one_minus_cos * k * k.transpose();
 }
 
+/// sqrt(x^2/a^2 + y^2/b^2 + z^2/c^2): 1 exactly on the ellipsoid.
+inline double ellipsoid_level(const Eigen::Vector3d& p, const Eigen::Vector3d& radii)
+{
+  return p.cwiseQuotient(radii).norm();
+}
+
 /// Radial scaling onto the ellipsoid x^2/a^2 + y^2/b^2 + z^2/c^2 = 1.
 inline void project_to_ellipsoid(Matrix& X, const Eigen::Vector3d& radii)
 {
-  for(Eigen::Index i = 0; i < X.rows(); ++i) {
-    const double q = std::sqrt(std::pow(X(i, 0) / radii[0], 2) + std::pow(X(i, 1) / radii[1], 2) +
-                               std::pow(X(i, 2) / radii[2], 2));
-    X.row(i) /= q;
-  }
+  for(Eigen::Index i = 0; i < X.rows(); ++i)
+    X.row(i) /= ellipsoid_level(X.row(i).transpose(), radii);
+}
+
+/// max_i |level(x_i) - 1|: the relative distance of the points from the ellipsoid.
+inline double max_ellipsoid_deviation(const Matrix& X, const Eigen::Vector3d& radii)
+{
+  double d = 0;
+  for(Eigen::Index i = 0; i < X.rows(); ++i)
+    d = std::max(d, std::abs(ellipsoid_level(X.row(i).transpose(), radii) - 1));
+  return d;
 }
 
 /// (P^N_abc)^{-1}(x+iy) = (2ax, 2by, c(|z|^2 - 1)) / (1 + |z|^2).
