@@ -157,12 +157,13 @@ Map_report ellipsoidal_density_equalizing_map(const TriangleMesh& tm, VertexPoin
   const internal::Engine_options options = internal::engine_options_from_parameters(np, 0.1, 1e-3, 300);
   const double truncation = internal::truncation_from_parameters(np);
   const auto solver = internal::solver_from_parameters(np);
+  const auto diffusion_solver = internal::diffusion_solver_from_parameters(np);
 
   std::string note;
   internal::Matrix x = internal::initial_ellipsoidal_map(tm, a, radii, population, np, *solver, note);
   internal::Ellipsoid_domain ellipsoid(a.F, x, radii, truncation, *solver);
   internal::Density_flow flow;
-  const internal::Engine_result r = internal::run_density_equalization(ellipsoid, flow, x, population, options, *solver);
+  const internal::Engine_result r = internal::run_density_equalization(ellipsoid, flow, x, population, options, *diffusion_solver);
 
   Map_report report;
   internal::fill_report(r, report);
@@ -213,13 +214,14 @@ Map_report ellipsoidal_density_equalizing_quasiconformal_map(const TriangleMesh&
   const double alpha = choose_parameter(get_parameter(np, internal_np::beltrami_weight), 5.);
   if(!(alpha >= 0) || !std::isfinite(alpha)) throw Invalid_input("beltrami_weight must be non-negative");
   const auto solver = internal::solver_from_parameters(np);
+  const auto diffusion_solver = internal::diffusion_solver_from_parameters(np);
 
   std::string note;
   internal::Matrix x = internal::initial_ellipsoidal_map(tm, a, radii, population, np, *solver, note);
   internal::Ellipsoid_domain ellipsoid(a.F, x, radii, truncation, *solver);
-  internal::Radii_search_flow flow(a.F, population, x, alpha, options.time_step, *solver);
+  internal::Radii_search_flow flow(a.F, population, x, alpha, options.time_step, *diffusion_solver);
   flow.energy_old = flow.energy(x);
-  const internal::Engine_result r = internal::run_density_equalization(ellipsoid, flow, x, population, options, *solver);
+  const internal::Engine_result r = internal::run_density_equalization(ellipsoid, flow, x, population, options, *diffusion_solver);
 
   Map_report report;
   internal::fill_report(r, report);

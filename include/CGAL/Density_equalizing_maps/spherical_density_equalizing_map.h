@@ -117,11 +117,12 @@ Map_report spherical_density_equalizing_map(const TriangleMesh& tm, VertexPointO
   const internal::Engine_options options = internal::engine_options_from_parameters(np, 0.1, 1e-3, 200);
   const double truncation = internal::truncation_from_parameters(np);
   const auto solver = internal::solver_from_parameters(np);
+  const auto diffusion_solver = internal::diffusion_solver_from_parameters(np);
 
   internal::Matrix x = internal::initial_spherical_map(a, np, *solver);
   internal::Ellipsoid_domain sphere(a.F, x, Eigen::Vector3d::Ones(), truncation, *solver);
   internal::Density_flow flow;
-  const internal::Engine_result r = internal::run_density_equalization(sphere, flow, x, population, options, *solver);
+  const internal::Engine_result r = internal::run_density_equalization(sphere, flow, x, population, options, *diffusion_solver);
 
   Map_report report;
   internal::fill_report(r, report);
@@ -203,11 +204,12 @@ Map_report landmark_aligned_spherical_density_equalizing_map(const TriangleMesh&
     throw Invalid_input("the weights alpha, beta, gamma must be non-negative");
 
   const auto solver = internal::solver_from_parameters(np);
+  const auto diffusion_solver = internal::diffusion_solver_from_parameters(np);
   if(!flow.prepare(a.X, a.F, options.time_step, *solver))
     throw Invalid_input("the harmonic-energy system of the input mesh could not be factored");
   internal::Matrix x = internal::initial_spherical_map(a, np, *solver);
   internal::Ellipsoid_domain sphere(a.F, x, Eigen::Vector3d::Ones(), truncation, *solver);
-  const internal::Engine_result r = internal::run_density_equalization(sphere, flow, x, population, options, *solver);
+  const internal::Engine_result r = internal::run_density_equalization(sphere, flow, x, population, options, *diffusion_solver);
 
   Map_report report;
   internal::fill_report(r, report);

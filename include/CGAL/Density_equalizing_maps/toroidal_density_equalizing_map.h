@@ -66,18 +66,6 @@ void write_toroidal_outputs(const TriangleMesh& tm, const Mesh_arrays<TriangleMe
   }
 }
 
-/// The solver of the diffusion systems: warm-started conjugate gradients unless
-/// the user chose a `sparse_linear_solver` (then that one, nullptr here).
-template <class NamedParameters>
-std::unique_ptr<Spd_solver> diffusion_solver_from_parameters(const NamedParameters&)
-{
-  using CGAL::parameters::is_default_parameter;
-  if constexpr(is_default_parameter<NamedParameters, internal_np::sparse_linear_solver_t>::value)
-    return std::unique_ptr<Spd_solver>(new Warm_started_cg_solver());
-  else
-    return nullptr;
-}
-
 inline void fill_toroidal_report(const Toroidal_run& run, const Torus_radii& t, Map_report& report)
 {
   fill_report(run.engine, report);

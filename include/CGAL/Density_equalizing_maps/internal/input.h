@@ -49,6 +49,27 @@ std::unique_ptr<Spd_solver> solver_from_parameters(const NamedParameters& np)
   return make_spd_solver(choose_parameter<Traits>(get_parameter(np, internal_np::sparse_linear_solver)));
 }
 
+/// The solver of the engine's diffusion systems: by default warm-started
+/// preconditioned conjugate gradients (`Diffusion_pcg_solver`) whose lagged
+/// factorization is a simplicial LDL^T (rarely refactored but applied several
+/// times per iteration, and simplicial triangular solves are the cheapest);
+/// the user's `sparse_linear_solver` if one is given.
+template <class NamedParameters>
+std::unique_ptr<Spd_solver> diffusion_solver_from_parameters(const NamedParameters& np)
+{
+  using CGAL::parameters::is_default_parameter;
+  if constexpr(is_default_parameter<NamedParameters, internal_np::sparse_linear_solver_t>::value) {
+#ifdef CGAL_DEM_USE_CHOLMOD
+    typedef CGAL::Eigen_solver_traits<Eigen::CholmodSimplicialLDLT<Sparse_matrix> > Ldlt_traits;
+#else
+    typedef CGAL::Eigen_solver_traits<Eigen::SimplicialLDLT<Sparse_matrix> > Ldlt_traits;
+#endif
+    return std::unique_ptr<Spd_solver>(new Diffusion_pcg_solver(make_spd_solver(Ldlt_traits())));
+  }
+  else
+    return solver_from_parameters(np);
+}
+
 /// The per-face population from `face_population_map`, or from
 /// `vertex_density_map` (averaged on faces, times the face area), or the face
 /// area of the input (area-preserving). Validated.

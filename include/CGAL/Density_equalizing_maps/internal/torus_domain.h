@@ -20,7 +20,6 @@
 #include <CGAL/Density_equalizing_maps/internal/density_engine.h>
 #include <CGAL/Density_equalizing_maps/internal/flat_torus.h>
 
-#include <Eigen/IterativeLinearSolvers>
 
 #include <memory>
 
@@ -29,49 +28,6 @@ namespace Density_equalizing_maps {
 namespace internal {
 
 
-/// Solver of the diffusion systems (A + dt L) rho+ = A rho of the flat torus:
-/// Jacobi-preconditioned conjugate gradients started from the linear
-/// extrapolation of the two previous solutions (the engine solves one such
-/// system per iteration, and the diffused density changes smoothly). The
-/// matrix is a mass matrix plus a small multiple of the Laplacian, well
-/// conditioned, so a few dozen matrix-vector products replace a sparse
-/// factorization per iteration. Relative residual 1e-8: far below what the
-/// velocity and the stopping test (1e-2 by default) resolve.
-class Warm_started_cg_solver : public Spd_solver
-{
-public:
-  explicit Warm_started_cg_solver(double tolerance = 1e-8) : m_tolerance(tolerance) {}
-  bool factor(const Sparse_matrix& A) override
-  {
-    m_cg.setTolerance(m_tolerance);
-    m_cg.setMaxIterations(std::max<Eigen::Index>(1000, A.rows()));
-    m_cg.compute(A);
-    return m_cg.info() == Eigen::Success;
-  }
-  bool solve(const Matrix& B, Matrix& X) override
-  {
-    Matrix guess = Matrix::Zero(B.rows(), B.cols());
-    if(m_last.rows() == B.rows() && m_last.cols() == B.cols()) {
-      guess = m_last;
-      if(m_before_last.rows() == B.rows() && m_before_last.cols() == B.cols()) guess = 2 * m_last - m_before_last;
-    }
-    X.resize(B.rows(), B.cols());
-    for(Eigen::Index c = 0; c < B.cols(); ++c) {
-      X.col(c) = m_cg.solveWithGuess(B.col(c), guess.col(c));
-      if(m_cg.info() != Eigen::Success) return false;
-    }
-    m_before_last.swap(m_last);
-    m_last = X;
-    return X.allFinite();
-  }
-  std::unique_ptr<Spd_solver> clone() const override
-  { return std::unique_ptr<Spd_solver>(new Warm_started_cg_solver(m_tolerance)); }
-
-private:
-  Eigen::ConjugateGradient<Sparse_matrix, Eigen::Lower | Eigen::Upper> m_cg;
-  Matrix m_last, m_before_last;
-  double m_tolerance;
-};
 
 class Torus_domain
 {
