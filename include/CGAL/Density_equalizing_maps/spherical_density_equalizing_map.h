@@ -98,8 +98,16 @@ Matrix initial_spherical_map(const Mesh_arrays<TriangleMesh>& a, const NamedPara
 ///     \cgalParamDescription{a callable `bool(std::size_t iteration, double error)` called once per iteration; returning `false` stops with the last bijective map (`Termination::CANCELLED`)}
 ///     \cgalParamDefault{none}
 ///   \cgalParamNEnd
-///   \cgalParamNBegin{vertex_point_map, vertex_index_map, sparse_linear_solver}
+///   \cgalParamNBegin{vertex_point_map, vertex_index_map}
 ///     \cgalParamDescription{as for `spherical_conformal_map()`}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{sparse_linear_solver}
+///     \cgalParamDescription{a model of `SparseLinearAlgebraWithFactorTraits_d` for the SPD systems}
+///     \cgalParamDefault{`Default_sparse_solver_traits` for the initial map and the Beltrami repairs; the
+///       diffusion steps, one per iteration on a slowly moving mesh, use conjugate gradients warm-started from
+///       the previous iterations and preconditioned by a factorization of an earlier diffusion matrix (Jacobi
+///       below 4000 vertices), refactored only when it stops being effective. If given, this solver is used
+///       for every system.}
 ///   \cgalParamNEnd
 /// \cgalNamedParamsEnd
 ///

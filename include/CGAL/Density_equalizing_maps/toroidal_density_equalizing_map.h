@@ -149,9 +149,8 @@ inline void fill_toroidal_report(const Toroidal_run& run, const Torus_radii& t, 
 ///   \cgalParamNBegin{sparse_linear_solver}
 ///     \cgalParamDescription{a model of `SparseLinearAlgebraWithFactorTraits_d` for the SPD systems}
 ///     \cgalParamDefault{`Default_sparse_solver_traits` for the harmonic map and the Beltrami repairs, and
-///       Jacobi-preconditioned conjugate gradients, warm-started from the previous iteration, for the diffusion
-///       steps (a mass matrix plus a small multiple of the Laplacian: well conditioned). If given, this solver is
-///       used for every system.}
+///       for the diffusion steps the warm-started preconditioned conjugate gradients described in
+///       `spherical_density_equalizing_map()`. If given, this solver is used for every system.}
 ///   \cgalParamNEnd
 /// \cgalNamedParamsEnd
 ///
