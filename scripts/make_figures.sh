@@ -47,6 +47,29 @@ fig_spherical_density_equalizing_map() {
     "$WORK/david_sdem.off,density=$p,look=dense,look_ref=$m"
 }
 
+fig_landmark_aligned_spherical_density_equalizing_map() {
+  local m="$DATA/brain_landmarks.off" p="$DATA/brain_landmarks.population.txt"
+  local l="$DATA/brain_landmarks.landmarks.txt"
+  map_mesh sdem "$m" "$WORK/brain_sdem.off" --population "$p" || return 0
+  map_mesh lsdem "$m" "$WORK/brain_lsdem.off" --population "$p" --landmarks "$l" || return 0
+  grep -hE '^l?sdem:' "$WORK/brain_sdem.off.log" "$WORK/brain_lsdem.off.log"
+  "${RENDER[@]}" "$FIG/landmark_aligned_spherical_density_equalizing_map.png" --size 300 \
+    "$m,landmarks=$l,hidden_depth=0.15,az=270,el=10" \
+    "$WORK/brain_sdem.off,ref=$m,landmarks=$l,targets=1,az=30,el=20" \
+    "$WORK/brain_lsdem.off,ref=$m,landmarks=$l,targets=1,az=30,el=20"
+}
+
+fig_ellipsoidal_conformal_map() {
+  local m="$DATA/maxplanck.off"
+  map_mesh ellipsoidal-conformal "$m" "$WORK/mp_ecm.off" || return 0
+  map_mesh ellipsoidal-conformal "$m" "$WORK/mp_ecm_opt.off" --optimize-radii || return 0
+  grep -h '^ellipsoidal-conformal:' "$WORK/mp_ecm.off.log" "$WORK/mp_ecm_opt.off.log"
+  "${RENDER[@]}" "$FIG/ellipsoidal_conformal_map.png" --size 300 \
+    "$m,up=y,az=60,el=10" \
+    "$WORK/mp_ecm.off,ref=$m,az=20,el=10" \
+    "$WORK/mp_ecm_opt.off,ref=$m,az=20,el=10"
+}
+
 fig_ellipsoidal_density_equalizing_map() {
   local m="$DATA/edem_ellipsoid1.off" p="$DATA/edem_ellipsoid1.population.txt"
   local a b c
@@ -69,6 +92,7 @@ fig_toroidal_density_equalizing_map() {
 }
 
 ALL=(spherical_conformal_map spherical_density_equalizing_map
+     landmark_aligned_spherical_density_equalizing_map ellipsoidal_conformal_map
      ellipsoidal_density_equalizing_map toroidal_density_equalizing_map)
 for f in "${@:-${ALL[@]}}"; do
   echo "make_figures: $f"

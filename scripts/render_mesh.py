@@ -24,6 +24,10 @@ PANEL is `mesh.off` followed by comma-separated options:
   up=x|y|z          the axis drawn vertically (default z)
   edges=1           draw the mesh edges (shows how a map deforms a regular mesh)
   color=RRGGBB      uniform colour (default light grey)
+  landmarks=L.txt   mark the landmark vertices (lines `vertex x y z`) with black dots and,
+                    with targets=1, their target points (x, y, z) with green rings;
+                    markers hidden by the mesh are not drawn, except those less than
+                    hidden_depth=H (default 0.03) times the panel extent behind the surface
   range=R           half-width of the log colour scale (default 1.5; values=: automatic)
 """
 import math
@@ -135,6 +139,19 @@ def panel_colors(V, F, opts):
     return [rgb] * n
 
 
+def read_landmarks(path, nv):
+    out = []
+    with open(path) as f:
+        for line in f:
+            t = line.split('#', 1)[0].split()
+            if t:
+                v = int(t[0])
+                if not 0 <= v < nv:
+                    raise SystemExit(f'{path}: vertex {v} out of range')
+                out.append((v, tuple(float(x) for x in t[1:4])))
+    return out
+
+
 def look_at_dense(V, F, opts):
     """Sets az/el so that the area-weighted centroid of the densest faces faces the viewer."""
     n = len(F)
@@ -172,8 +189,18 @@ def view_transform(V, opts):
     return out
 
 
-def render_panel(img, depth, W, H, x0, pw, V, F, colors, opts):
-    P = view_transform(V, opts)
+def draw_disc(img, W, H, x0, pw, cx, cy, r_in, r_out, rgb):
+    for py in range(max(int(cy - r_out), 0), min(int(cy + r_out) + 2, H)):
+        for px in range(max(int(cx - r_out), x0), min(int(cx + r_out) + 2, x0 + pw)):
+            d = math.hypot(px + 0.5 - cx, py + 0.5 - cy)
+            if r_in <= d <= r_out:
+                q = 3 * (py * W + px)
+                img[q:q + 3] = rgb
+
+
+def render_panel(img, depth, W, H, x0, pw, V, F, colors, opts, markers=()):
+    P = view_transform(list(V) + [m[0] for m in markers], opts)
+    P, M = P[:len(V)], P[len(V):]
     xs, ys = [p[0] for p in P], [p[1] for p in P]
     cx, cy = 0.5 * (min(xs) + max(xs)), 0.5 * (min(ys) + max(ys))
     ext = max(max(xs) - min(xs), max(ys) - min(ys)) or 1.0
@@ -223,6 +250,22 @@ def render_panel(img, depth, W, H, x0, pw, V, F, colors, opts):
                         img[3 * q:3 * q + 3] = dark
                     else:
                         img[3 * q:3 * q + 3] = rgb
+    # markers (point, kind) over the shaded mesh, if not hidden: kind 'dot' or 'ring'
+    eps = float(opts.get('hidden_depth', 0.03)) * ext
+    for (_, kind), p in sorted(zip(markers, M), key=lambda t: t[0][1] != 'ring'):
+        mx, my = x0 + 0.5 * pw + s * (p[0] - cx), 0.5 * H - s * (p[1] - cy)
+        px, py = int(mx), int(my)
+        if not (x0 <= px < x0 + pw and 0 <= py < H):
+            continue
+        near = min(depth[yy * W + xx] for yy in range(max(py - 2, 0), min(py + 3, H))
+                   for xx in range(max(px - 2, x0), min(px + 3, x0 + pw)))
+        if p[2] > near + eps:
+            continue
+        if kind == 'ring':
+            draw_disc(img, W, H, x0, pw, mx, my, 7.0, 10.0, b'\x00\xa0\x00')
+        else:
+            draw_disc(img, W, H, x0, pw, mx, my, 0.0, 5.0, b'\xff\xff\xff')
+            draw_disc(img, W, H, x0, pw, mx, my, 0.0, 3.5, b'\x00\x00\x00')
 
 
 def write_png(path, W, H, img):
@@ -259,7 +302,13 @@ def main(argv):
         V, F = read_off(parts[0])
         if opts.get('look') == 'dense':
             look_at_dense(V, F, opts)
-        render_panel(img, depth, W, H, p * pw, pw, V, F, panel_colors(V, F, opts), opts)
+        markers = []
+        if 'landmarks' in opts:
+            lm = read_landmarks(opts['landmarks'], len(V))
+            if opts.get('targets', '0') not in ('0', 'no', 'false'):
+                markers += [(t, 'ring') for _, t in lm]
+            markers += [(V[v], 'dot') for v, _ in lm]
+        render_panel(img, depth, W, H, p * pw, pw, V, F, panel_colors(V, F, opts), opts, markers)
     # box-filter down-sampling
     w, h = W // ss, H // ss
     small = bytearray(3 * w * h)
