@@ -100,6 +100,61 @@ int main()
   CHECK(qo.level < 1e-12, "optimized FECM points lie on the ellipsoid");
   CHECK(std::abs((ro[0] + ro[1] + ro[2]) / 3 - 1) < 1e-12, "optimized radii have mean 1");
 
+  // An ellipsoid-shaped mesh mapped onto its own radii: the identity is a
+  // conformal map with no area distortion, so FECM (normalized by the poles at
+  // the ends of the c axis and the right vertex on +x) must come close to it.
+  // Before psi was normalized at the poles, the south pole of such a mesh
+  // landed near the equator (mean |d_area| ~1.5, worse than the sphere's).
+  {
+    Mesh ell;
+    const std::string name = dir + "/edem_ellipsoid_cts";
+    CHECK(CGAL::IO::read_polygon_mesh(name + ".off", ell), "read edem_ellipsoid_cts");
+    std::array<double, 3> er = {0, 0, 0};
+    {
+      std::ifstream in(name + ".params.txt");
+      std::string line;
+      while(std::getline(in, line)) {
+        const std::size_t eq = line.find('=');
+        if(eq == std::string::npos) continue;
+        const std::string key = line.substr(0, eq);
+        const int c = key == "a" ? 0 : key == "b" ? 1 : key == "c" ? 2 : -1;
+        if(c >= 0) er[c] = std::stod(line.substr(eq + 1));
+      }
+    }
+    CHECK(er[0] > 0 && er[1] > 0 && er[2] > 0, "ellipsoid radii read from the params file");
+    auto eout = ell.add_property_map<vertex_descriptor, Point>("v:ellipsoid", Point(0, 0, 0)).first;
+    auto esph = ell.add_property_map<vertex_descriptor, Point>("v:sphere", Point(0, 0, 0)).first;
+    DEM::spherical_conformal_map(ell, esph);
+    const double ell_sphere_darea = quality(ell, esph, {1., 1., 1.}).darea;
+    const DEM::Map_report er_rep = DEM::ellipsoidal_conformal_map(ell, eout, DEM::parameters::ellipsoid_radii(er));
+    const Quality qe = quality(ell, eout, er);
+    double max_dev = 0, cmax = std::max(er[0], std::max(er[1], er[2]));
+    {
+      K::Vector_3 centre(0, 0, 0);
+      for(vertex_descriptor v : vertices(ell)) centre = centre + (ell.point(v) - CGAL::ORIGIN);
+      centre = centre / double(num_vertices(ell));
+      for(vertex_descriptor v : vertices(ell))
+        max_dev = std::max(max_dev, std::sqrt(CGAL::squared_distance(get(eout, v), ell.point(v) - centre)));
+    }
+    std::cout << "ellipsoid onto its radii: mean|mu| " << qe.mu << " mean|d_area| " << qe.darea << " (sphere "
+              << ell_sphere_darea << "), max distance to the input " << max_dev << "\n";
+    CHECK(er_rep.fold_overs == 0 && qe.folds == 0, "ellipsoid onto its radii: no fold-over");
+    CHECK(qe.mu <= 0.05, "ellipsoid onto its radii: mean |mu| <= 0.05");
+    CHECK(qe.darea < 0.5 * ell_sphere_darea, "ellipsoid onto its radii: area distortion far below the sphere's");
+    CHECK(qe.darea < 0.1, "ellipsoid onto its radii: nearly area-preserving");
+    CHECK(max_dev < 0.05 * cmax, "ellipsoid onto its radii: close to the identity");
+    const DEM::Map_report eo = DEM::ellipsoidal_conformal_map(
+      ell, eout, DEM::parameters::combine(DEM::parameters::ellipsoid_radii(er), DEM::parameters::optimize_radii(true)));
+    const std::array<double, 3> eor = {eo.radii[0], eo.radii[1], eo.radii[2]};
+    const Quality qeo = quality(ell, eout, eor);
+    std::cout << "  optimized radii " << eor[0] << " " << eor[1] << " " << eor[2] << ", energy " << eo.initial_error
+              << " -> " << eo.final_error << ", mean|d_area| " << qeo.darea << "\n";
+    CHECK(eo.final_error <= eo.initial_error && qeo.folds == 0 && qeo.darea < 0.1,
+          "ellipsoid: radii optimization keeps a fold-free, nearly area-preserving map");
+    CHECK(std::abs(eor[0] / eor[2] - er[0] / er[2]) < 0.1 && std::abs(eor[1] / eor[2] - er[1] / er[2]) < 0.1,
+          "ellipsoid: optimized radii stay near the mesh's own shape");
+  }
+
   // Given radii and poles.
   // poles along the input's y axis (not the default ones), right along x
   std::array<vertex_descriptor, 3> poles = {*vertices(brain).begin(), *vertices(brain).begin(), *vertices(brain).begin()};

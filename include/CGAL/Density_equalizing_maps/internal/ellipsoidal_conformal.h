@@ -12,10 +12,14 @@
 // Pipeline: FLASH spherical map -> north chart z -> Moebius g sending the top
 // pole face to infinity, the bottom pole face to 0 and the "right" vertex to
 // the positive real axis -> balancing factor k -> planar chart p. For radii
-// (a,b,c): psi = LBS(mu of (P^N_abc)^{-1}) on the chart punctured at the north
-// face, and the output f = (P^N_abc)^{-1}(psi^{-1}(p)). psi^{-1} is evaluated by
-// locating p_i in the triangulation (psi(p), F') and interpolating the chart
-// positions barycentrically, so every output point lies exactly on the ellipsoid.
+// (a,b,c): psi with the Beltrami coefficient of (P^N_abc)^{-1} on the chart
+// punctured at the north face, and the output f = (P^N_abc)^{-1}(psi^{-1}(p)).
+// psi is computed as psi' o A, A a closed-form map adapted to the ellipsoid
+// near the north pole, and normalized to fix the origin (see the comment before
+// ellipsoid_adapted_point: pinning psi itself to the identity near the puncture
+// moves the south pole). psi^{-1} is evaluated by locating p_i in the
+// triangulation (psi(p), F') and interpolating the adapted chart positions
+// barycentrically, so every output point lies exactly on the ellipsoid.
 // Steps up to the chart p do not depend on the radii and are computed once.
 
 #include <CGAL/Density_equalizing_maps/internal/beltrami.h>
@@ -422,28 +426,90 @@ inline Ellipsoidal_chart ellipsoidal_chart(const Matrix& X, const Index_matrix& 
 // FECM steps 5-8 for given radii
 // ---------------------------------------------------------------------------
 
-/// Beltrami coefficient of (P^N_abc)^{-1} at the point x + iy (paper 003 eqs. 31-36;
-/// the common factor (1 + x^2 + y^2)^{-4} of E, F, G cancels).
-inline Complex inverse_ellipsoidal_projection_beltrami(Complex z, const Eigen::Vector3d& r)
+// Why psi is not computed in the chart p itself (the cause of the large area
+// distortion of earlier versions): near the north pole (p -> infinity)
+// (P^N_abc)^{-1} is, in the coordinate u = 1/conj(p), the linear stretch
+// diag(2a, 2b); so the psi that makes (P^N_abc)^{-1} o psi^{-1} conformal
+// behaves there like 1/conj(diag(a, b) u) (up to a factor), which is not the
+// identity. Pinning psi to the identity on the outer triangle of the punctured
+// chart therefore composes the wanted conformal map with the Riemann map of a
+// distorted domain onto that triangle, which does not fix the origin: the
+// south pole of the mesh lands far from (0, 0, -c) and the area distortion is
+// large (an ellipsoid mapped onto its own radii got mean |d_area| 1.36).
+// Moreover the Beltrami coefficient rotates like exp(4 i arg p) there, which
+// the few huge faces around the puncture cannot resolve.
+//
+// psi is therefore written psi = psi' o A with the closed-form homeomorphism
+// A(z) = 1/conj(diag(a, b) (1/conj(z))) of the plane (fixing 0 and infinity,
+// 1-homogeneous). H = (P^N_abc)^{-1} o A^{-1} is conformal at infinity, so its
+// Beltrami coefficient nu vanishes at the puncture and psi' = LBS(nu) on the
+// triangulation (A(p), F') is conformal near infinity: psi'(w) = w + c + O(1/w)
+// there. Pinning psi' to the identity on the outer vertices is then right up
+// to the translation c (and O(1/w)); the translation is recovered exactly by
+// normalizing psi'(0) = 0 (LBS solutions are defined up to additive constants
+// of their boundary values), so that the output sends the south pole face to
+// the south pole, as the Moebius normalization intends.
+
+/// The ellipsoid-adapted chart A(z) = 1/conj(diag(a, b) (1/conj(z))) (A(0) = 0).
+inline Eigen::Vector2d ellipsoid_adapted_point(const Eigen::Vector2d& z, const Eigen::Vector3d& r)
 {
-  const double x = z.real(), y = z.imag();
-  const double a2 = r[0] * r[0], b2 = r[1] * r[1], c2 = r[2] * r[2];
-  const double u = 1 - x * x + y * y, v = 1 + x * x - y * y;
-  const double E = 4 * a2 * u * u + 16 * b2 * x * x * y * y + 16 * c2 * x * x;
-  const double Fm = -8 * a2 * x * y * u - 8 * b2 * x * y * v + 16 * c2 * x * y;
-  const double G = 16 * a2 * x * x * y * y + 4 * b2 * v * v + 16 * c2 * y * y;
-  const double det = std::max(E * G - Fm * Fm, 0.);
-  const double den = E + G + 2 * std::sqrt(det);
+  const double s = z.squaredNorm();
+  if(!(s > 0)) return z;
+  const Eigen::Vector2d u(r[0] * z.x() / s, r[1] * z.y() / s);
+  return u / u.squaredNorm();
+}
+
+/// A^{-1}(w) = 1/conj(diag(1/a, 1/b) (1/conj(w))).
+inline Eigen::Vector2d inverse_ellipsoid_adapted_point(const Eigen::Vector2d& w, const Eigen::Vector3d& r)
+{
+  const double s = w.squaredNorm();
+  if(!(s > 0)) return w;
+  const Eigen::Vector2d u(w.x() / (s * r[0]), w.y() / (s * r[1]));
+  return u / u.squaredNorm();
+}
+
+/// Beltrami coefficient of H = (P^N_abc)^{-1} o A^{-1} at w, by the metric formula
+/// (paper 003 eq. 31). With v = w/|w|^2 and u = (v_x/a, v_y/b),
+/// H = (2 v_x, 2 v_y, c (1 - |u|^2)) / (1 + |u|^2), whose differential is
+/// composed with that of the inversion w -> v.
+inline Complex adapted_inverse_projection_beltrami(const Eigen::Vector2d& w, const Eigen::Vector3d& r)
+{
+  const double s = w.squaredNorm();
+  if(!(s > 0)) // limit at 0: H ~ diag(2a^2, 2b^2) (x, y) + const
+    return Complex((r[0] * r[0] - r[1] * r[1]) / (r[0] * r[0] + r[1] * r[1]), 0);
+  const Eigen::Vector2d v = w / s;
+  const double ux = v.x() / r[0], uy = v.y() / r[1], d = 1 + ux * ux + uy * uy;
+  const double qx = 2 * ux / r[0], qy = 2 * uy / r[1]; // d|u|^2 / dv
+  Eigen::Matrix<double, 3, 2> Jv;
+  Jv << 2 / d - 2 * v.x() * qx / (d * d), -2 * v.x() * qy / (d * d),
+        -2 * v.y() * qx / (d * d), 2 / d - 2 * v.y() * qy / (d * d),
+        -2 * r[2] * qx / (d * d), -2 * r[2] * qy / (d * d);
+  Eigen::Matrix2d Jw; // differential of w -> w / |w|^2
+  Jw << s - 2 * w.x() * w.x(), -2 * w.x() * w.y(), -2 * w.x() * w.y(), s - 2 * w.y() * w.y();
+  Jw /= s * s;
+  const Eigen::Matrix<double, 3, 2> J = Jv * Jw;
+  const double E = J.col(0).squaredNorm(), G = J.col(1).squaredNorm(), Fm = J.col(0).dot(J.col(1));
+  const double den = E + G + 2 * std::sqrt(std::max(E * G - Fm * Fm, 0.));
   if(!(den > 0) || !std::isfinite(den)) return Complex(0, 0);
   return Complex(E - G, 2 * Fm) / den;
 }
 
-/// The maps interpolated by point location are the identity on the outer
-/// triangle of psi's triangulation (pinned there), so they are extended by the
-/// identity beyond it (only chart points near the north pole get there).
-struct Identity_outside
+/// The conformal correction for some radii: psi = psi' o A on the punctured
+/// chart, given by the adapted chart A(p) (`source`), psi'(A(p)) (`image`,
+/// normalized by psi'(0) = 0) and the translation psi' has beyond its outer
+/// triangle (psi'(w) = w + far_offset there).
+struct Conformal_correction
 {
-  Eigen::Vector2d operator()(const Eigen::Vector2d& q) const { return q; }
+  Eigen::Vector3d radii = Eigen::Vector3d::Ones();
+  Matrix source, image;
+  Eigen::Vector2d far_offset = Eigen::Vector2d::Zero();
+};
+
+/// psi' (or its inverse) beyond the outer triangle, where it is a translation.
+struct Translation_outside
+{
+  Eigen::Vector2d offset;
+  Eigen::Vector2d operator()(const Eigen::Vector2d& q) const { return q + offset; }
 };
 
 inline void check_radii(const Eigen::Vector3d& r)
@@ -477,7 +543,8 @@ public:
     // Pinned set of psi (ALGORITHMS 5.7 [Rec]): the north face, the
     // max(3, min(50, floor(n/100))) vertices of largest |p|, and the corners of
     // any open face whose chart orientation disagrees with the majority (faces
-    // bulging past the outer triangle); psi is the identity there.
+    // bulging past the outer triangle); psi' (psi in the adapted chart, see
+    // conformal_correction) is the identity there up to a translation.
     const Eigen::Index n = X.rows();
     m_fixed.assign(static_cast<std::size_t>(n), 0);
     for(int a = 0; a < 3; ++a) m_fixed[F(m_chart.north_face, a)] = 1;
@@ -506,51 +573,94 @@ public:
   const Spd_solver& prototype() const { return *m_prototype; }
   const Flash_result& flash() const { return m_flash; }
 
-  /// psi = LBS(mu of (P^N_abc)^{-1}) for the chart dilated by t, identity on
-  /// the pinned set, expressed in undilated coordinates: the LBS stiffness is
-  /// scale invariant, so the correction of the chart t p is t psi(p / t).
-  Matrix conformal_correction(const Eigen::Vector3d& radii, double t = 1) const
+  /// The adapted chart A(p) of the (undilated) chart p for radii (a, b, c).
+  Matrix adapted_chart(const Eigen::Vector3d& radii) const
+  {
+    Matrix PA(m_P.rows(), 2);
+    for(Eigen::Index i = 0; i < m_P.rows(); ++i)
+      PA.row(i) = ellipsoid_adapted_point(m_P.row(i).transpose(), radii).transpose();
+    return PA;
+  }
+
+  /// psi = psi' o A with psi' = LBS(nu) (nu the Beltrami coefficient of
+  /// (P^N_abc)^{-1} o A^{-1}) for the chart dilated by t, expressed in undilated
+  /// coordinates (A is 1-homogeneous and the LBS stiffness scale invariant, so
+  /// the correction of t p is t psi(p / t)). psi' is the identity on the pinned
+  /// set (plus the corners of faces that A folds) up to the translation that
+  /// makes psi'(0) = 0.
+  Conformal_correction conformal_correction(const Eigen::Vector3d& radii, double t = 1) const
   {
     const Eigen::Index n = m_X.rows();
-    Complex_vector vertex_mu(n);
-    for(Eigen::Index i = 0; i < n; ++i) vertex_mu[i] = inverse_ellipsoidal_projection_beltrami(t * m_chart.p[i], radii);
     const Index_matrix& Fo = m_chart.open_faces;
-    Complex_vector mu(Fo.rows());
+    Conformal_correction c;
+    c.radii = radii;
+    c.source = adapted_chart(radii);
+    Complex_vector vertex_nu(n);
+    for(Eigen::Index i = 0; i < n; ++i)
+      vertex_nu[i] = adapted_inverse_projection_beltrami(t * c.source.row(i).transpose(), radii);
+    Complex_vector nu(Fo.rows());
     for(Eigen::Index k = 0; k < Fo.rows(); ++k) // paper eq. 37: mean of the corner values
-      mu[k] = (vertex_mu[Fo(k, 0)] + vertex_mu[Fo(k, 1)] + vertex_mu[Fo(k, 2)]) / 3.;
-    truncate_beltrami(mu, 0.999);
-    Matrix psi;
-    if(!linear_beltrami_solve(m_P, Fo, mu, m_fixed, m_P, *m_psi_solver, psi, &m_open_assembler) || !psi.allFinite())
-      psi = m_P; // cannot happen for a valid chart; the identity keeps the map defined
-    return psi;
+      nu[k] = (vertex_nu[Fo(k, 0)] + vertex_nu[Fo(k, 1)] + vertex_nu[Fo(k, 2)]) / 3.;
+    truncate_beltrami(nu, 0.999);
+    std::vector<char> fixed = m_fixed;
+    {
+      const std::vector<int> o = planar_orientations(c.source, Fo);
+      long balance = 0;
+      for(int v : o) balance += v;
+      const int sign = balance >= 0 ? 1 : -1;
+      for(Eigen::Index k = 0; k < Fo.rows(); ++k)
+        if(o[k] != sign)
+          for(int a = 0; a < 3; ++a) fixed[Fo(k, a)] = 1;
+    }
+    if(!linear_beltrami_solve(c.source, Fo, nu, fixed, c.source, *m_psi_solver, c.image, &m_open_assembler) ||
+       !c.image.allFinite())
+      c.image = c.source; // cannot happen for a valid chart; the identity keeps the map defined
+    // normalization psi'(0) = 0: the origin is the image of the south pole face
+    const Planar_point_locator source_locator(c.source, Fo);
+    const Eigen::Vector2d origin = Eigen::Vector2d::Zero();
+    const Eigen::Index f = source_locator.locate(origin, source_locator.incident_face(m_chart.poles[1]));
+    if(f >= 0) {
+      const Eigen::Vector3d l = source_locator.barycentric(f, origin);
+      const Eigen::RowVector2d at_origin =
+        l[0] * c.image.row(Fo(f, 0)) + l[1] * c.image.row(Fo(f, 1)) + l[2] * c.image.row(Fo(f, 2));
+      c.image.rowwise() -= at_origin;
+      c.far_offset = -at_origin.transpose();
+    }
+    return c;
   }
 
-  /// psi^{-1}(queries) for per-vertex queries (n x 2) in the chart plane
-  /// (psi computed for `radii` and dilation t, undilated coordinates).
-  Matrix inverse_correction(const Matrix& psi, const Matrix& queries, const Eigen::Vector3d& radii, double t,
+  /// psi^{-1}(queries) (n x 2 per-vertex queries in the undilated chart plane)
+  /// using a locator of the triangulation (c.image, F').
+  Matrix inverse_correction(const Planar_point_locator& image_locator, const Conformal_correction& c,
+                            const Matrix& queries, std::size_t* outside = nullptr) const
+  {
+    Matrix pre = interpolate_at_vertex_queries(image_locator, c.source, queries, m_order, m_parent,
+                                               Translation_outside{-c.far_offset}, outside);
+    for(Eigen::Index i = 0; i < pre.rows(); ++i)
+      pre.row(i) = inverse_ellipsoid_adapted_point(pre.row(i).transpose(), c.radii).transpose();
+    return pre;
+  }
+
+  Matrix inverse_correction(const Conformal_correction& c, const Matrix& queries,
                             std::size_t* outside = nullptr) const
   {
-    const Planar_point_locator locator(psi, m_chart.open_faces);
-    return interpolate_at_vertex_queries(locator, m_P, queries, m_order, m_parent,
-                                         inverse_outside_map(radii, t), outside);
+    const Planar_point_locator locator(c.image, m_chart.open_faces);
+    return inverse_correction(locator, c, queries, outside);
   }
 
-  /// psi^{-1} beyond psi's triangulation.
-  static Identity_outside inverse_outside_map(const Eigen::Vector3d&, double) { return Identity_outside(); }
-
-  /// psi at arbitrary chart points: locate in (p, F'), interpolate psi; identity outside.
-  Matrix correction_at(const Matrix& psi, const Matrix& points, const std::vector<Eigen::Index>& start_vertices,
-                       const Eigen::Vector3d& /*radii*/, double /*t*/) const
+  /// psi at arbitrary chart points: locate A(point) in (A(p), F'), interpolate psi'.
+  Matrix correction_at(const Conformal_correction& c, const Matrix& points,
+                       const std::vector<Eigen::Index>& start_vertices) const
   {
-    const Planar_point_locator locator(m_P, m_chart.open_faces);
+    const Planar_point_locator locator(c.source, m_chart.open_faces);
     Matrix out(points.rows(), 2);
     const Index_matrix& Fo = m_chart.open_faces;
     for(Eigen::Index k = 0; k < points.rows(); ++k) {
-      const Eigen::Vector2d q(points(k, 0), points(k, 1));
+      const Eigen::Vector2d q = ellipsoid_adapted_point(points.row(k).transpose(), c.radii);
       const Eigen::Index f = locator.locate(q, locator.incident_face(start_vertices[k]));
-      if(f < 0) { out.row(k) = q.transpose(); continue; }
+      if(f < 0) { out.row(k) = (q + c.far_offset).transpose(); continue; }
       const Eigen::Vector3d l = locator.barycentric(f, q);
-      out.row(k) = l[0] * psi.row(Fo(f, 0)) + l[1] * psi.row(Fo(f, 1)) + l[2] * psi.row(Fo(f, 2));
+      out.row(k) = l[0] * c.image.row(Fo(f, 0)) + l[1] * c.image.row(Fo(f, 1)) + l[2] * c.image.row(Fo(f, 2));
     }
     return out;
   }
@@ -583,8 +693,8 @@ inline Matrix inverse_ellipsoidal_chart(const Matrix& P, const Eigen::Vector3d& 
 inline Matrix ellipsoidal_conformal(const Ellipsoidal_mapper& mapper, const Eigen::Vector3d& radii, double t = 1,
                                     Matrix* preimage = nullptr)
 {
-  const Matrix psi = mapper.conformal_correction(radii, t);
-  const Matrix pre = t * mapper.inverse_correction(psi, mapper.planar_chart(), radii, t);
+  const Conformal_correction psi = mapper.conformal_correction(radii, t);
+  const Matrix pre = t * mapper.inverse_correction(psi, mapper.planar_chart());
   if(preimage) *preimage = pre;
   return inverse_ellipsoidal_chart(pre, radii);
 }
@@ -623,22 +733,20 @@ struct Ellipsoidal_evaluation
 /// so the map stays conformal; it replaces the paper's balancing factor k,
 /// which only equalizes the two polar triangles. Each trial only relocates the
 /// dilated chart points in psi's triangulation (beyond its outer triangle,
-/// around the north pole, psi is extended by the identity it has on that triangle).
+/// around the north pole, psi' is extended by the translation it has on that triangle).
 inline Ellipsoidal_evaluation evaluate_ellipsoidal_conformal(const Ellipsoidal_mapper& mapper,
                                                              const Eigen::Vector3d& radii, const Vector& source_area,
                                                              bool optimal_dilation, double log_center = 0,
-                                                             double half_width = 2)
+                                                             double half_width = 3)
 {
   Ellipsoidal_evaluation e;
   e.radii = radii;
-  const Matrix psi = mapper.conformal_correction(radii, 1.);
-  const Planar_point_locator locator(psi, mapper.chart().open_faces);
+  const Conformal_correction psi = mapper.conformal_correction(radii, 1.);
+  const Planar_point_locator locator(psi.image, mapper.chart().open_faces);
   const Matrix& P = mapper.planar_chart();
   auto map_at = [&](double t) {
     const Matrix query = t * P;
-    return inverse_ellipsoidal_chart(
-      interpolate_at_vertex_queries(locator, P, query, mapper.order(), mapper.parent(),
-                                    Ellipsoidal_mapper::inverse_outside_map(radii, 1.)), radii);
+    return inverse_ellipsoidal_chart(mapper.inverse_correction(locator, psi, query), radii);
   };
   auto energy = [&](const Matrix& f) {
     const double E = area_energy(source_area, face_areas(f, mapper.faces()));
@@ -686,7 +794,7 @@ inline Radii_optimization optimize_ellipsoid_radii(const Ellipsoidal_mapper& map
 {
   const Vector source_area = face_areas(mapper.input(), mapper.faces());
   Radii_optimization res;
-  double log_dilation = 0, half_width = 2.5; // the dilation search is narrowed around the best one so far
+  double log_dilation = 0, half_width = 3; // the dilation search is narrowed around the best one so far
   double best_energy = std::numeric_limits<double>::infinity();
   auto eval = [&](const Eigen::Vector2d& u) {
     ++res.evaluations;
@@ -767,14 +875,14 @@ inline Quasiconformal_result ellipsoidal_quasiconformal(const Ellipsoidal_mapper
 
   // 1-2. psi (of the chart t p, in undilated coordinates), and the planar
   // targets psi(P^N_abc(q_k)).
-  const Matrix psi = mapper.conformal_correction(radii, t);
+  const Conformal_correction psi = mapper.conformal_correction(radii, t);
   Matrix tp(nl, 2);
   for(Eigen::Index k = 0; k < nl; ++k) {
     const Eigen::Vector3d s = row_vector3(targets, k).cwiseQuotient(radii);
     const Complex z = north_stereographic(s.normalized());
     tp(k, 0) = z.real() / t; tp(k, 1) = z.imag() / t;
   }
-  const Matrix qt = t * mapper.correction_at(psi, tp, landmarks, radii, t);
+  const Matrix qt = t * mapper.correction_at(psi, tp, landmarks);
   const Complex_vector qtc = to_complex(qt);
 
   // 3. Rough alignment by the least-squares similarity z -> s z (closed form).
@@ -842,7 +950,7 @@ inline Quasiconformal_result ellipsoidal_quasiconformal(const Ellipsoidal_mapper
   // smoothing) while the composed map folds on the ellipsoid.
   auto compose = [&](const Matrix& W) {
     const Matrix undilated = W / t;
-    return inverse_ellipsoidal_chart(t * mapper.inverse_correction(psi, undilated, radii, t), radii);
+    return inverse_ellipsoidal_chart(t * mapper.inverse_correction(psi, undilated), radii);
   };
   std::size_t folds = count_folds(Phi);
   if(folds == 0) {
