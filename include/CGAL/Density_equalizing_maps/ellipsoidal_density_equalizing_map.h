@@ -220,7 +220,7 @@ Map_report ellipsoidal_density_equalizing_quasiconformal_map(const TriangleMesh&
   internal::Matrix x = internal::initial_ellipsoidal_map(tm, a, radii, population, np, *solver, note);
   internal::Ellipsoid_domain ellipsoid(a.F, x, radii, truncation, *solver);
   internal::Radii_search_flow flow(a.F, population, x, alpha, options.time_step, *diffusion_solver);
-  flow.energy_old = flow.energy(x);
+  flow.start(x);
   const internal::Engine_result r = internal::run_density_equalization(ellipsoid, flow, x, population, options, *diffusion_solver);
 
   Map_report report;

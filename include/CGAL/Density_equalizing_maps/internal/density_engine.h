@@ -67,8 +67,6 @@ struct Engine_result
 struct Flow_state
 {
   const Matrix& x;
-  const Vector& mass;
-  const Sparse_matrix& stiffness; // cotangent Laplacian L on x
   const Vector& diffused_density;
 };
 
@@ -76,6 +74,9 @@ struct Flow_state
 struct Density_flow
 {
   void before_step(Matrix&) {}
+  /// A flow that has already diffused the density on exactly this map (EDEQ's
+  /// energy does) hands it over instead of the engine solving again.
+  bool diffused_density(const Matrix&, Vector&) { return false; }
   void direction(const Flow_state&, Matrix&) {}
   /// the stopping quantity, given the default one (sd/mean of the density)
   double stop_measure(const Matrix&, const Matrix&, double density_error) { return density_error; }
@@ -111,26 +112,25 @@ Engine_result run_density_equalization(Domain& domain, Flow& flow, Matrix& x, co
     flow.before_step(x);
 
     // implicit diffusion step (A + dt L) rho+ = A rho on the fixed pattern
-    const Vector A = domain.mass(x);
-    const Matrix blocks = domain.stiffness_blocks(x);
-    const Sparse_matrix K = domain.assembler().assemble(dt * blocks, &A);
-    Matrix rhs = A.cwiseProduct(rho), rho_plus_m;
-    if(!solver.factor(K) || !solver.solve(rhs, rho_plus_m)) {
-      res.termination = Termination::STALLED;
-      res.message = "the diffusion system could not be solved";
-      x = x_previous;
-      break;
+    Vector rho_plus;
+    if(!flow.diffused_density(x, rho_plus)) {
+      const Vector A = domain.mass(x);
+      const Sparse_matrix K = domain.assembler().assemble(dt * domain.stiffness_blocks(x), &A);
+      Matrix rhs = A.cwiseProduct(rho), rho_plus_m;
+      if(!solver.factor(K) || !solver.solve(rhs, rho_plus_m)) {
+        res.termination = Termination::STALLED;
+        res.message = "the diffusion system could not be solved";
+        x = x_previous;
+        break;
+      }
+      rho_plus = rho_plus_m.col(0);
     }
-    const Vector rho_plus = rho_plus_m.col(0);
 
     // velocity -grad(rho+)/rho+ at the vertices, tangential part
     Matrix v = M * domain.face_gradient(x, rho_plus);
     for(Eigen::Index i = 0; i < n; ++i) v.row(i) /= -rho_plus[i];
     Matrix d = domain.tangent_part(x, v);
-    {
-      const Sparse_matrix L = domain.assembler().assemble(blocks);
-      flow.direction(Flow_state{x, A, L, rho_plus}, d);
-    }
+    flow.direction(Flow_state{x, rho_plus}, d);
 
     if(!domain.advance(x, d, dt, x_new, res.steps)) {
       res.termination = Termination::STALLED;

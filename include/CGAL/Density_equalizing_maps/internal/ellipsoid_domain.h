@@ -55,7 +55,7 @@ public:
     Complex_vector mu = beltrami_coefficient(c.D0, D, c.F);
     if(!has_chart_fold(mu, c)) return true;
     for(Eigen::Index k = 0; k < mu.size(); ++k)
-      if(std::abs(mu[k]) >= 1) mu[k] *= (1 - m_truncation) / std::abs(mu[k]);
+      if(std::norm(mu[k]) >= 1) mu[k] *= (1 - m_truncation) / std::abs(mu[k]);
     Matrix w;
     ++repairs;
     if(!linear_beltrami_solve(c.D0, c.F, mu, c.in_cap, D, *c.solver, w, &c.assembler)) return false;
@@ -93,7 +93,7 @@ private:
   static bool has_chart_fold(const Complex_vector& mu, const Chart& c)
   {
     for(Eigen::Index k = 0; k < mu.size(); ++k)
-      if(!c.face_in_cap[k] && std::abs(mu[k]) >= 1) return true;
+      if(!c.face_in_cap[k] && std::norm(mu[k]) >= 1) return true; // |mu| >= 1 without a square root
     return false;
   }
 

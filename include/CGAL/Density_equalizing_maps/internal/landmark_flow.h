@@ -49,6 +49,8 @@ struct Landmark_flow
     return p;
   }
 
+  bool diffused_density(const Matrix&, Vector&) { return false; }
+
   void before_step(Matrix& x)
   {
     const Eigen::Matrix3d R = optimal_rotation(landmark_positions(x), targets);

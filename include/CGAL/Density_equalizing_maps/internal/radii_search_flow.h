@@ -24,32 +24,62 @@ struct Radii_search_flow
   double alpha = 5;
   double time_step = 0.1;
   std::size_t search_period = 5;
-  std::unique_ptr<Spd_solver> solver;
+  std::unique_ptr<Spd_solver> solver;           // diffusion on the accepted maps, a smooth sequence
+  std::unique_ptr<Spd_solver> candidate_solver; // diffusion on the rescaled maps of the radius search
   Face_block_assembler assembler;
   double energy_old = 0, energy_new = 0;
   std::size_t searches = 0;
+  // the map of the last energy evaluation and its diffused density: the
+  // engine's next diffusion step is the same system
+  Matrix diffused_map;
+  Vector diffused;
 
   Radii_search_flow(const Index_matrix& faces, const Vector& p, const Matrix& r0, double a, double dt,
                     const Spd_solver& prototype)
     : F(faces), population(p), initial_map(r0), alpha(a), time_step(dt), solver(prototype.clone()),
-      assembler(faces, r0.rows())
+      candidate_solver(prototype.clone()), assembler(faces, r0.rows())
   {}
 
   /// E(r) = sum_i |M grad rho+|_i^2 / max(rho_V)^2 + alpha sum_T |mu_T|^2, rho+ one
   /// diffusion step of the density on r (the reference code's discretization).
-  double energy(const Matrix& r)
+  /// A candidate map starts its solver from `guess`, the diffused density of
+  /// the accepted map it rescales.
+  double energy(const Matrix& r, Vector& rho_plus, const Vector* guess = nullptr)
   {
     const Vector area = face_areas(r, F);
     const Sparse_matrix M = face_to_vertex(area, F, r.rows());
     const Vector rho = M * population.cwiseQuotient(area);
     const Vector A = lumped_mass(r, F);
     const Sparse_matrix K = assembler.assemble(time_step * cotangent_stiffness_blocks(r, F), &A);
-    Matrix rhs = A.cwiseProduct(rho), rho_plus;
-    if(!solver->factor(K) || !solver->solve(rhs, rho_plus)) return std::numeric_limits<double>::infinity();
-    const Matrix G = M * face_gradient(r, F, rho_plus.col(0));
+    Spd_solver& s = guess ? *candidate_solver : *solver;
+    Matrix rhs = A.cwiseProduct(rho), solution;
+    const bool solved = s.factor(K) && (guess ? s.solve(rhs, solution, Matrix(*guess)) : s.solve(rhs, solution));
+    if(!solved) return std::numeric_limits<double>::infinity();
+    rho_plus = solution.col(0);
+    const Matrix G = M * face_gradient(r, F, rho_plus);
     const double m = rho.maxCoeff();
     return G.rowwise().squaredNorm().sum() / (m * m) +
            alpha * beltrami_magnitude_3d(initial_map, r, F).squaredNorm();
+  }
+
+  double energy(const Matrix& r)
+  {
+    Vector rho_plus;
+    return energy(r, rho_plus);
+  }
+
+  /// E at the starting map (the reference of the first relative change).
+  void start(const Matrix& x)
+  {
+    energy_old = energy(x, diffused);
+    diffused_map = x;
+  }
+
+  bool diffused_density(const Matrix& x, Vector& rho_plus)
+  {
+    if(diffused.size() != x.rows() || diffused_map.rows() != x.rows() || diffused_map != x) return false;
+    rho_plus = diffused;
+    return true;
   }
 
   void before_step(Matrix&) {}
@@ -60,13 +90,15 @@ struct Radii_search_flow
   void after_step(std::size_t iteration, Matrix& x, Ellipsoid_domain& domain)
   {
     const std::size_t n = iteration - 1; // the reference's counter before its increment
-    energy_new = energy(x);
+    energy_new = energy(x, diffused);
+    diffused_map = x;
     if(n < 2 || n % search_period != 0) return;
     ++searches;
     const double delta = std::max(0.1 * std::pow(0.9, double(n / search_period)), 1e-5);
     const Eigen::Vector3d r = domain.radii();
     Eigen::Vector3d best = r;
     double best_energy = energy_new;
+    Vector best_diffused;
     const int order[9][2] = {{0, 0}, {0, -1}, {0, 1}, {-1, 0}, {1, 0}, {-1, -1}, {-1, 1}, {1, -1}, {1, 1}};
     for(const auto& o : order) {
       if(o[0] == 0 && o[1] == 0) continue;
@@ -75,12 +107,15 @@ struct Radii_search_flow
       Matrix y = x;
       y.col(1) *= c[1] / r[1];
       y.col(2) *= c[2] / r[2];
-      const double e = energy(y);
-      if(e < best_energy) { best_energy = e; best = c; }
+      Vector rho_plus;
+      const double e = energy(y, rho_plus, &diffused);
+      if(e < best_energy) { best_energy = e; best = c; best_diffused.swap(rho_plus); }
     }
     if(best != r) {
       domain.set_radii(x, best);
       energy_new = best_energy;
+      diffused.swap(best_diffused);
+      diffused_map = x;
     }
   }
 

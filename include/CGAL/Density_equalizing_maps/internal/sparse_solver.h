@@ -57,6 +57,9 @@ public:
   virtual bool factor(const Sparse_matrix& A) = 0;
   /// Solves for every column of B.
   virtual bool solve(const Matrix& B, Matrix& X) = 0;
+  /// Solves for every column of B; iterative solvers start from `guess`
+  /// (same shape as B), direct ones ignore it.
+  virtual bool solve(const Matrix& B, Matrix& X, const Matrix& /*guess*/) { return solve(B, X); }
   /// A fresh solver of the same kind (each system keeps its own factorization).
   virtual std::unique_ptr<Spd_solver> clone() const = 0;
 };
@@ -188,12 +191,13 @@ public:
 
   bool solve(const Matrix& B, Matrix& X) override
   {
-    Matrix guess;
-    if(m_last.rows() == B.rows() && m_last.cols() == B.cols())
-      guess = m_before_last.rows() == B.rows() && m_before_last.cols() == B.cols() ? Matrix(2 * m_last - m_before_last)
-                                                                                 : m_last;
-    else
-      guess = Matrix::Zero(B.rows(), B.cols());
+    if(m_last.rows() != B.rows() || m_last.cols() != B.cols()) return solve(B, X, Matrix::Zero(B.rows(), B.cols()));
+    if(m_before_last.rows() != B.rows() || m_before_last.cols() != B.cols()) return solve(B, X, m_last);
+    return solve(B, X, 2 * m_last - m_before_last);
+  }
+
+  bool solve(const Matrix& B, Matrix& X, const Matrix& guess) override
+  {
     X.resize(B.rows(), B.cols());
     m_last_iterations = 0;
     for(Eigen::Index c = 0; c < B.cols(); ++c) {
