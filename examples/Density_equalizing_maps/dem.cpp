@@ -254,9 +254,9 @@ Run run_ellipsoidal_quasiconformal(Problem& pb, const Options& opt)
 #endif
 
 #if defined(DEM_HAS_EDEM) && defined(DEM_HAS_ELLIPSOIDAL_CONFORMAL)
-// EDEM and EDEQ start from the ellipsoidal conformal map with the (initial)
-// radii, the library's default; it is computed here and handed over, so that
-// the initial density variance is measured on the map the iteration starts from.
+// EDEM and EDEQ start from the library's default starting map with the
+// (initial) radii; it is computed here and handed over, so that the initial
+// density variance is measured on the map the iteration starts from.
 Run run_edem(Problem& pb, const Options& opt, bool quasiconformal)
 {
   Run run;
@@ -265,7 +265,9 @@ Run run_edem(Problem& pb, const Options& opt, bool quasiconformal)
   Progress progress(opt.quiet);
   const std::array<double, 3> radii = *opt.radii;
   const Stopwatch watch;
-  DEM::ellipsoidal_conformal_map(pb.mesh, init, NP::ellipsoid_radii(radii));
+  const DEM::Map_report start = DEM::ellipsoidal_density_equalizing_initial_map(
+      pb.mesh, init, NP::combine(NP::ellipsoid_radii(radii), NP::face_population_map(pb.population_map)));
+  if(!opt.quiet) std::cerr << "dem: " << start.message << std::endl;
   const auto common = NP::combine(NP::ellipsoid_radii(radii), NP::initial_map(init),
                                   NP::face_population_map(pb.population_map),
                                   NP::progress_callback(progress.callback()),

@@ -101,6 +101,43 @@ Eigen::Vector3d ellipsoid_radii_from_parameters(const Mesh_arrays<TriangleMesh>&
 } // namespace internal
 
 /// \ingroup PkgDensityEqualizingMapsEllipsoid
+/// \brief Computes the map onto the ellipsoid from which `ellipsoidal_density_equalizing_map()` and
+/// `ellipsoidal_density_equalizing_quasiconformal_map()` start when no `initial_map` is given.
+///
+/// The input surface itself if it already lies on the ellipsoid (relative
+/// distance at most 1e-3) with every face positively oriented about the
+/// center; otherwise `ellipsoidal_conformal_map()` with the same radii, or the
+/// Moebius-corrected spherical conformal map scaled by the radii when its
+/// density is closer to uniform. Callers who want to measure or show the
+/// starting map compute it here and pass it on as `initial_map`.
+///
+/// \param tm the input mesh (closed, genus 0)
+/// \param initial_map receives the starting map (bijective, on the ellipsoid)
+/// \param np `ellipsoid_radii`, `face_population_map` or `vertex_density_map`, `vertex_point_map`,
+///   `vertex_index_map`, `sparse_linear_solver`, as for `ellipsoidal_density_equalizing_map()`
+/// \returns a `Map_report` whose `message` says which map was chosen, with the radii and the exact fold-over
+///   count (0)
+/// \throws Invalid_input on an invalid mesh, population or radii; nothing is written then.
+template <class TriangleMesh, class VertexPointOutMap,
+          class NamedParameters = parameters::Default_named_parameters>
+Map_report ellipsoidal_density_equalizing_initial_map(const TriangleMesh& tm, VertexPointOutMap initial_map,
+                                                      const NamedParameters& np = parameters::default_values())
+{
+  const auto a = internal::closed_surface_arrays(tm, np, 2);
+  const Eigen::Vector3d radii = internal::ellipsoid_radii_from_parameters(a, np);
+  const internal::Vector population = internal::population_from_parameters(a, np);
+  const auto solver = internal::solver_from_parameters(np);
+  Map_report report;
+  const internal::Matrix x = internal::initial_ellipsoidal_map(tm, a, radii, population, np, *solver, report.message);
+  if(report.message.empty()) report.message = "started from the ellipsoidal conformal map. ";
+  report.termination = Termination::CONVERGED;
+  report.fold_overs = internal::count_inverted_faces_about_center(x, a.F);
+  report.radii = {radii[0], radii[1], radii[2]};
+  internal::write_points(a, x, initial_map);
+  return report;
+}
+
+/// \ingroup PkgDensityEqualizingMapsEllipsoid
 /// \brief Computes the ellipsoidal density-equalizing map (EDEM) of a genus-0 closed mesh.
 ///
 /// The density-equalizing flow of `spherical_density_equalizing_map()` run on

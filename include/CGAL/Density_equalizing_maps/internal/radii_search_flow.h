@@ -24,8 +24,9 @@ struct Radii_search_flow
   double alpha = 5;
   double time_step = 0.1;
   std::size_t search_period = 5;
-  std::unique_ptr<Spd_solver> solver;           // diffusion on the accepted maps, a smooth sequence
-  std::unique_ptr<Spd_solver> candidate_solver; // diffusion on the rescaled maps of the radius search
+  // diffusion on the accepted maps (a smooth sequence) and, as side systems
+  // started from the current solution, on the rescaled maps of the radius search
+  std::unique_ptr<Spd_solver> solver;
   Face_block_assembler assembler;
   double energy_old = 0, energy_new = 0;
   std::size_t searches = 0;
@@ -37,7 +38,7 @@ struct Radii_search_flow
   Radii_search_flow(const Index_matrix& faces, const Vector& p, const Matrix& r0, double a, double dt,
                     const Spd_solver& prototype)
     : F(faces), population(p), initial_map(r0), alpha(a), time_step(dt), solver(prototype.clone()),
-      candidate_solver(prototype.clone()), assembler(faces, r0.rows())
+      assembler(faces, r0.rows())
   {}
 
   /// E(r) = sum_i |M grad rho+|_i^2 / max(rho_V)^2 + alpha sum_T |mu_T|^2, rho+ one
@@ -51,9 +52,9 @@ struct Radii_search_flow
     const Vector rho = M * population.cwiseQuotient(area);
     const Vector A = lumped_mass(r, F);
     const Sparse_matrix K = assembler.assemble(time_step * cotangent_stiffness_blocks(r, F), &A);
-    Spd_solver& s = guess ? *candidate_solver : *solver;
     Matrix rhs = A.cwiseProduct(rho), solution;
-    const bool solved = s.factor(K) && (guess ? s.solve(rhs, solution, Matrix(*guess)) : s.solve(rhs, solution));
+    const bool solved = solver->factor(K) && (guess ? solver->solve(rhs, solution, Matrix(*guess))
+                                                    : solver->solve(rhs, solution));
     if(!solved) return std::numeric_limits<double>::infinity();
     rho_plus = solution.col(0);
     const Matrix G = M * face_gradient(r, F, rho_plus);
