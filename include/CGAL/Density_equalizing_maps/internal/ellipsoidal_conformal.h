@@ -15,8 +15,8 @@
 // (a,b,c): psi with the Beltrami coefficient of (P^N_abc)^{-1} on the chart
 // punctured at the north face, and the output f = (P^N_abc)^{-1}(psi^{-1}(p)).
 // psi is computed as psi' o A, A a closed-form map adapted to the ellipsoid
-// near the north pole, and normalized to fix the origin (see the comment before
-// ellipsoid_adapted_point: pinning psi itself to the identity near the puncture
+// at both poles, and normalized to fix the origin (see the comment before
+// radial_chart_point: pinning psi itself to the identity near the puncture
 // moves the south pole). psi^{-1} is evaluated by locating p_i in the
 // triangulation (psi(p), F') and interpolating the adapted chart positions
 // barycentrically, so every output point lies exactly on the ellipsoid.
@@ -440,76 +440,77 @@ inline Ellipsoidal_chart ellipsoidal_chart(const Matrix& X, const Index_matrix& 
 // the few huge faces around the puncture cannot resolve.
 //
 // psi is therefore written psi = psi' o A with the closed-form homeomorphism
-// A(z) = 1/conj(diag(a, b) (1/conj(z))) of the plane (fixing 0 and infinity,
-// 1-homogeneous). H = (P^N_abc)^{-1} o A^{-1} is conformal at infinity, so its
-// Beltrami coefficient nu vanishes at the puncture and psi' = LBS(nu) on the
-// triangulation (A(p), F') is conformal near infinity: psi'(w) = w + c + O(1/w)
-// there. Pinning psi' to the identity on the outer vertices is then right up
-// to the translation c (and O(1/w)); the translation is recovered exactly by
-// normalizing psi'(0) = 0 (LBS solutions are defined up to additive constants
-// of their boundary values), so that the output sends the south pole face to
-// the south pole, as the Moebius normalization intends.
+// A = P^N o (radial projection of E_abc onto the unit sphere) o (P^N_abc)^{-1}
+// of the plane: it fixes 0 and infinity, and H = (P^N_abc)^{-1} o A^{-1} is the
+// radial parameterization of the ellipsoid (the point of E_abc in the
+// direction (P^N)^{-1}(w)), which is conformal at both poles (and at the other
+// four vertices of the ellipsoid). So the Beltrami coefficient nu of H vanishes
+// at the puncture and at the origin, psi' = LBS(nu) on the triangulation
+// (A(p), F') is conformal near infinity, psi'(w) = w + c + O(1/w) there, and
+// pinning psi' to the identity on the outer vertices is right up to the
+// translation c; c is recovered exactly by normalizing psi'(0) = 0 (LBS
+// solutions follow additive constants of their boundary values), so that the
+// output sends the south pole face to the south pole, as the Moebius step intends.
 
-/// The ellipsoid-adapted chart A(z) = 1/conj(diag(a, b) (1/conj(z))) (A(0) = 0).
-inline Eigen::Vector2d ellipsoid_adapted_point(const Eigen::Vector2d& z, const Eigen::Vector3d& r)
+/// A(z) = P^N(normalize(diag(a, b, c) (P^N)^{-1}(z))) in closed form:
+/// (2a x + 2i b y) / (S - c (|z|^2 - 1)) with S = sqrt(4a^2x^2 + 4b^2y^2 + c^2(|z|^2 - 1)^2),
+/// the denominator rewritten without cancellation for |z| > 1. A(0) = 0, and
+/// A^{-1} is A for the radii (1/a, 1/b, 1/c).
+inline Eigen::Vector2d radial_chart_point(const Eigen::Vector2d& z, const Eigen::Vector3d& r)
 {
-  const double s = z.squaredNorm();
-  if(!(s > 0)) return z;
-  const Eigen::Vector2d u(r[0] * z.x() / s, r[1] * z.y() / s);
-  return u / u.squaredNorm();
+  const double m = z.squaredNorm() - 1;
+  const double t2 = 4 * (r[0] * r[0] * z.x() * z.x() + r[1] * r[1] * z.y() * z.y());
+  const double S = std::sqrt(t2 + r[2] * r[2] * m * m);
+  const double den = m > 0 ? t2 / (S + r[2] * m) : S - r[2] * m;
+  if(!(den > 0) || !std::isfinite(den)) return z; // only at infinity
+  return Eigen::Vector2d(2 * r[0] * z.x(), 2 * r[1] * z.y()) / den;
 }
 
-/// A^{-1}(w) = 1/conj(diag(1/a, 1/b) (1/conj(w))).
-inline Eigen::Vector2d inverse_ellipsoid_adapted_point(const Eigen::Vector2d& w, const Eigen::Vector3d& r)
+inline Eigen::Vector2d inverse_radial_chart_point(const Eigen::Vector2d& w, const Eigen::Vector3d& r)
 {
-  const double s = w.squaredNorm();
-  if(!(s > 0)) return w;
-  const Eigen::Vector2d u(w.x() / (s * r[0]), w.y() / (s * r[1]));
-  return u / u.squaredNorm();
+  return radial_chart_point(w, r.cwiseInverse());
 }
 
-/// Beltrami coefficient of H = (P^N_abc)^{-1} o A^{-1} at w, by the metric formula
-/// (paper 003 eq. 31). With v = w/|w|^2 and u = (v_x/a, v_y/b),
-/// H = (2 v_x, 2 v_y, c (1 - |u|^2)) / (1 + |u|^2), whose differential is
-/// composed with that of the inversion w -> v.
-inline Complex adapted_inverse_projection_beltrami(const Eigen::Vector2d& w, const Eigen::Vector3d& r)
+/// Beltrami coefficient at w of the radial parameterization of E_abc,
+/// H(w) = s / sqrt(s^T M s) with s = (P^N)^{-1}(w) and M = diag(1/a^2, 1/b^2, 1/c^2),
+/// by the metric formula (paper 003 eq. 31). dH is proportional to
+/// ds - s (s^T M ds) / (s^T M s); the common factors cancel in the coefficient.
+inline Complex radial_parameterization_beltrami(const Eigen::Vector2d& w, const Eigen::Vector3d& r)
 {
-  const double s = w.squaredNorm();
-  if(!(s > 0)) // limit at 0: H ~ diag(2a^2, 2b^2) (x, y) + const
-    return Complex((r[0] * r[0] - r[1] * r[1]) / (r[0] * r[0] + r[1] * r[1]), 0);
-  const Eigen::Vector2d v = w / s;
-  const double ux = v.x() / r[0], uy = v.y() / r[1], d = 1 + ux * ux + uy * uy;
-  const double qx = 2 * ux / r[0], qy = 2 * uy / r[1]; // d|u|^2 / dv
-  Eigen::Matrix<double, 3, 2> Jv;
-  Jv << 2 / d - 2 * v.x() * qx / (d * d), -2 * v.x() * qy / (d * d),
-        -2 * v.y() * qx / (d * d), 2 / d - 2 * v.y() * qy / (d * d),
-        -2 * r[2] * qx / (d * d), -2 * r[2] * qy / (d * d);
-  Eigen::Matrix2d Jw; // differential of w -> w / |w|^2
-  Jw << s - 2 * w.x() * w.x(), -2 * w.x() * w.y(), -2 * w.x() * w.y(), s - 2 * w.y() * w.y();
-  Jw /= s * s;
-  const Eigen::Matrix<double, 3, 2> J = Jv * Jw;
+  const double x = w.x(), y = w.y(), r2 = x * x + y * y;
+  const Eigen::Vector3d s(2 * x / (1 + r2), 2 * y / (1 + r2), (r2 - 1) / (1 + r2));
+  const Eigen::Vector3d Ms = s.cwiseQuotient(r.cwiseProduct(r));
+  const double q = s.dot(Ms);
+  Eigen::Matrix<double, 3, 2> J; // d(P^N)^{-1} times (1 + |w|^2)^2
+  J << 2 * (1 - x * x + y * y), -4 * x * y,
+       -4 * x * y, 2 * (1 + x * x - y * y),
+       4 * x, 4 * y;
+  for(int c = 0; c < 2; ++c) J.col(c) -= s * (Ms.dot(J.col(c)) / q);
   const double E = J.col(0).squaredNorm(), G = J.col(1).squaredNorm(), Fm = J.col(0).dot(J.col(1));
   const double den = E + G + 2 * std::sqrt(std::max(E * G - Fm * Fm, 0.));
   if(!(den > 0) || !std::isfinite(den)) return Complex(0, 0);
   return Complex(E - G, 2 * Fm) / den;
 }
 
-/// The conformal correction for some radii: psi = psi' o A on the punctured
-/// chart, given by the adapted chart A(p) (`source`), psi'(A(p)) (`image`,
-/// normalized by psi'(0) = 0) and the translation psi' has beyond its outer
-/// triangle (psi'(w) = w + far_offset there).
+/// The conformal correction psi = psi' o A for some radii and the chart
+/// dilated by t, in undilated coordinates: psi_t(p) = psi'(A(t p)) / t.
+/// `source` = A(t p) (dilated), `image` = psi'(A(t p)) / t with psi'(0) = 0,
+/// and psi'(w) = w + far_offset beyond its outer triangle.
 struct Conformal_correction
 {
   Eigen::Vector3d radii = Eigen::Vector3d::Ones();
+  double dilation = 1;
   Matrix source, image;
   Eigen::Vector2d far_offset = Eigen::Vector2d::Zero();
 };
 
-/// psi' (or its inverse) beyond the outer triangle, where it is a translation.
-struct Translation_outside
+/// psi'^{-1} beyond the outer triangle, from undilated image coordinates q to
+/// source coordinates: t q - far_offset.
+struct Outside_inverse_correction
 {
-  Eigen::Vector2d offset;
-  Eigen::Vector2d operator()(const Eigen::Vector2d& q) const { return q + offset; }
+  double dilation;
+  Eigen::Vector2d far_offset;
+  Eigen::Vector2d operator()(const Eigen::Vector2d& q) const { return dilation * q - far_offset; }
 };
 
 inline void check_radii(const Eigen::Vector3d& r)
@@ -573,31 +574,22 @@ public:
   const Spd_solver& prototype() const { return *m_prototype; }
   const Flash_result& flash() const { return m_flash; }
 
-  /// The adapted chart A(p) of the (undilated) chart p for radii (a, b, c).
-  Matrix adapted_chart(const Eigen::Vector3d& radii) const
-  {
-    Matrix PA(m_P.rows(), 2);
-    for(Eigen::Index i = 0; i < m_P.rows(); ++i)
-      PA.row(i) = ellipsoid_adapted_point(m_P.row(i).transpose(), radii).transpose();
-    return PA;
-  }
-
-  /// psi = psi' o A with psi' = LBS(nu) (nu the Beltrami coefficient of
-  /// (P^N_abc)^{-1} o A^{-1}) for the chart dilated by t, expressed in undilated
-  /// coordinates (A is 1-homogeneous and the LBS stiffness scale invariant, so
-  /// the correction of t p is t psi(p / t)). psi' is the identity on the pinned
-  /// set (plus the corners of faces that A folds) up to the translation that
-  /// makes psi'(0) = 0.
+  /// psi_t = psi' o A for the chart dilated by t (see Conformal_correction):
+  /// psi' = LBS(nu), nu the Beltrami coefficient of (P^N_abc)^{-1} o A^{-1},
+  /// on the triangulation (A(t p), F'), the identity on the pinned set (plus the
+  /// corners of faces that A folds) up to the translation that makes psi'(0) = 0.
   Conformal_correction conformal_correction(const Eigen::Vector3d& radii, double t = 1) const
   {
     const Eigen::Index n = m_X.rows();
     const Index_matrix& Fo = m_chart.open_faces;
     Conformal_correction c;
     c.radii = radii;
-    c.source = adapted_chart(radii);
-    Complex_vector vertex_nu(n);
+    c.dilation = t;
+    c.source.resize(n, 2);
     for(Eigen::Index i = 0; i < n; ++i)
-      vertex_nu[i] = adapted_inverse_projection_beltrami(t * c.source.row(i).transpose(), radii);
+      c.source.row(i) = radial_chart_point(t * m_P.row(i).transpose(), radii).transpose();
+    Complex_vector vertex_nu(n);
+    for(Eigen::Index i = 0; i < n; ++i) vertex_nu[i] = radial_parameterization_beltrami(c.source.row(i).transpose(), radii);
     Complex_vector nu(Fo.rows());
     for(Eigen::Index k = 0; k < Fo.rows(); ++k) // paper eq. 37: mean of the corner values
       nu[k] = (vertex_nu[Fo(k, 0)] + vertex_nu[Fo(k, 1)] + vertex_nu[Fo(k, 2)]) / 3.;
@@ -626,18 +618,19 @@ public:
       c.image.rowwise() -= at_origin;
       c.far_offset = -at_origin.transpose();
     }
+    c.image /= t;
     return c;
   }
 
-  /// psi^{-1}(queries) (n x 2 per-vertex queries in the undilated chart plane)
-  /// using a locator of the triangulation (c.image, F').
+  /// psi_t^{-1}(queries) for per-vertex queries (n x 2, undilated image
+  /// coordinates), in undilated chart coordinates, using a locator of (c.image, F').
   Matrix inverse_correction(const Planar_point_locator& image_locator, const Conformal_correction& c,
                             const Matrix& queries, std::size_t* outside = nullptr) const
   {
     Matrix pre = interpolate_at_vertex_queries(image_locator, c.source, queries, m_order, m_parent,
-                                               Translation_outside{-c.far_offset}, outside);
+                                               Outside_inverse_correction{c.dilation, c.far_offset}, outside);
     for(Eigen::Index i = 0; i < pre.rows(); ++i)
-      pre.row(i) = inverse_ellipsoid_adapted_point(pre.row(i).transpose(), c.radii).transpose();
+      pre.row(i) = inverse_radial_chart_point(pre.row(i).transpose(), c.radii).transpose() / c.dilation;
     return pre;
   }
 
@@ -648,7 +641,7 @@ public:
     return inverse_correction(locator, c, queries, outside);
   }
 
-  /// psi at arbitrary chart points: locate A(point) in (A(p), F'), interpolate psi'.
+  /// psi_t at arbitrary (undilated) chart points: locate A(t point) in (A(t p), F'), interpolate.
   Matrix correction_at(const Conformal_correction& c, const Matrix& points,
                        const std::vector<Eigen::Index>& start_vertices) const
   {
@@ -656,9 +649,9 @@ public:
     Matrix out(points.rows(), 2);
     const Index_matrix& Fo = m_chart.open_faces;
     for(Eigen::Index k = 0; k < points.rows(); ++k) {
-      const Eigen::Vector2d q = ellipsoid_adapted_point(points.row(k).transpose(), c.radii);
+      const Eigen::Vector2d q = radial_chart_point(c.dilation * points.row(k).transpose(), c.radii);
       const Eigen::Index f = locator.locate(q, locator.incident_face(start_vertices[k]));
-      if(f < 0) { out.row(k) = (q + c.far_offset).transpose(); continue; }
+      if(f < 0) { out.row(k) = ((q + c.far_offset) / c.dilation).transpose(); continue; }
       const Eigen::Vector3d l = locator.barycentric(f, q);
       out.row(k) = l[0] * c.image.row(Fo(f, 0)) + l[1] * c.image.row(Fo(f, 1)) + l[2] * c.image.row(Fo(f, 2));
     }
