@@ -5,7 +5,7 @@
 // face density <= 0.016, mean |mu| <= 0.25, 0 fold-overs, all vertices on the
 // final ellipsoid (the radii found, a kept) to 1e-12.
 // Skipped (77) when the shared data folder is not available.
-#include <dem_test_meshes.h>
+#include <dem_edem_cases.h>
 
 #include <CGAL/Density_equalizing_maps/IO/sidecar_files.h>
 #include <CGAL/Density_equalizing_maps/ellipsoidal_density_equalizing_map.h>
@@ -28,16 +28,7 @@ typedef std::array<double, 3> Radii;
 
 namespace {
 
-double max_level_deviation(const Mesh& m, const Point_map& out, const Radii& r)
-{
-  double d = 0;
-  for(vertex_descriptor v : vertices(m)) {
-    const Point& p = get(out, v);
-    d = std::max(d, std::abs(p.x() * p.x() / (r[0] * r[0]) + p.y() * p.y() / (r[1] * r[1]) +
-                             p.z() * p.z() / (r[2] * r[2]) - 1));
-  }
-  return d;
-}
+using dem_edem_cases::max_level_deviation;
 
 void edeq_case(const std::string& name)
 {

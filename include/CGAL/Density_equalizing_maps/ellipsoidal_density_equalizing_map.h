@@ -98,6 +98,38 @@ Eigen::Vector3d ellipsoid_radii_from_parameters(const Mesh_arrays<TriangleMesh>&
   return radii;
 }
 
+/// EDEM and EDEQ: the same start, domain and engine; they differ by the flow
+/// (plain density equalization, or with the radius search) and its stopping
+/// tolerance. `make_flow(F, population, x, options, diffusion_solver)` builds it.
+template <class TriangleMesh, class VertexPointOutMap, class NamedParameters, class MakeFlow>
+Map_report ellipsoidal_density_equalization(const TriangleMesh& tm, VertexPointOutMap ellipsoid_map,
+                                            const NamedParameters& np, double default_tolerance,
+                                            const MakeFlow& make_flow)
+{
+  const auto a = closed_surface_arrays(tm, np, 2);
+  const Eigen::Vector3d radii = ellipsoid_radii_from_parameters(a, np);
+  const Vector population = population_from_parameters(a, np);
+  const Engine_options options = engine_options_from_parameters(np, 0.1, default_tolerance, 300);
+  const double truncation = truncation_from_parameters(np);
+  const auto solver = solver_from_parameters(np);
+  const auto diffusion_solver = diffusion_solver_from_parameters(np);
+
+  std::string note;
+  Matrix x = initial_ellipsoidal_map(tm, a, radii, population, np, *solver, note);
+  Ellipsoid_domain ellipsoid(a.F, x, radii, truncation, *solver);
+  auto flow = make_flow(a.F, population, x, options, *diffusion_solver);
+  const Engine_result r = run_density_equalization(ellipsoid, flow, x, population, options, *diffusion_solver);
+
+  Map_report report;
+  fill_report(r, report);
+  report.message = note + report.message;
+  report.fold_overs = ellipsoid.fold_overs(x);
+  const Eigen::Vector3d& found = ellipsoid.radii();
+  report.radii = {found[0], found[1], found[2]};
+  write_points(a, x, ellipsoid_map);
+  return report;
+}
+
 } // namespace internal
 
 /// \ingroup PkgDensityEqualizingMapsEllipsoid
@@ -186,29 +218,10 @@ template <class TriangleMesh, class VertexPointOutMap,
 Map_report ellipsoidal_density_equalizing_map(const TriangleMesh& tm, VertexPointOutMap ellipsoid_map,
                                               const NamedParameters& np = parameters::default_values())
 {
-  using CGAL::parameters::choose_parameter;
-  using CGAL::parameters::get_parameter;
-  const auto a = internal::closed_surface_arrays(tm, np, 2);
-  const Eigen::Vector3d radii = internal::ellipsoid_radii_from_parameters(a, np);
-  const internal::Vector population = internal::population_from_parameters(a, np);
-  const internal::Engine_options options = internal::engine_options_from_parameters(np, 0.1, 1e-3, 300);
-  const double truncation = internal::truncation_from_parameters(np);
-  const auto solver = internal::solver_from_parameters(np);
-  const auto diffusion_solver = internal::diffusion_solver_from_parameters(np);
-
-  std::string note;
-  internal::Matrix x = internal::initial_ellipsoidal_map(tm, a, radii, population, np, *solver, note);
-  internal::Ellipsoid_domain ellipsoid(a.F, x, radii, truncation, *solver);
-  internal::Density_flow flow;
-  const internal::Engine_result r = internal::run_density_equalization(ellipsoid, flow, x, population, options, *diffusion_solver);
-
-  Map_report report;
-  internal::fill_report(r, report);
-  report.message = note + report.message;
-  report.fold_overs = ellipsoid.fold_overs(x);
-  report.radii = {radii[0], radii[1], radii[2]};
-  internal::write_points(a, x, ellipsoid_map);
-  return report;
+  return internal::ellipsoidal_density_equalization(
+    tm, ellipsoid_map, np, 1e-3,
+    [](const internal::Index_matrix&, const internal::Vector&, const internal::Matrix&, const internal::Engine_options&,
+       const internal::Spd_solver&) { return internal::Density_flow(); });
 }
 
 /// \ingroup PkgDensityEqualizingMapsEllipsoid
@@ -243,31 +256,16 @@ Map_report ellipsoidal_density_equalizing_quasiconformal_map(const TriangleMesh&
 {
   using CGAL::parameters::choose_parameter;
   using CGAL::parameters::get_parameter;
-  const auto a = internal::closed_surface_arrays(tm, np, 2);
-  const Eigen::Vector3d radii = internal::ellipsoid_radii_from_parameters(a, np);
-  const internal::Vector population = internal::population_from_parameters(a, np);
-  const internal::Engine_options options = internal::engine_options_from_parameters(np, 0.1, 1e-5, 300);
-  const double truncation = internal::truncation_from_parameters(np);
   const double alpha = choose_parameter(get_parameter(np, internal_np::beltrami_weight), 5.);
   if(!(alpha >= 0) || !std::isfinite(alpha)) throw Invalid_input("beltrami_weight must be non-negative");
-  const auto solver = internal::solver_from_parameters(np);
-  const auto diffusion_solver = internal::diffusion_solver_from_parameters(np);
-
-  std::string note;
-  internal::Matrix x = internal::initial_ellipsoidal_map(tm, a, radii, population, np, *solver, note);
-  internal::Ellipsoid_domain ellipsoid(a.F, x, radii, truncation, *solver);
-  internal::Radii_search_flow flow(a.F, population, x, alpha, options.time_step, *diffusion_solver);
-  flow.start(x);
-  const internal::Engine_result r = internal::run_density_equalization(ellipsoid, flow, x, population, options, *diffusion_solver);
-
-  Map_report report;
-  internal::fill_report(r, report);
-  report.message = note + report.message;
-  report.fold_overs = ellipsoid.fold_overs(x);
-  const Eigen::Vector3d& found = ellipsoid.radii();
-  report.radii = {found[0], found[1], found[2]};
-  internal::write_points(a, x, ellipsoid_map);
-  return report;
+  return internal::ellipsoidal_density_equalization(
+    tm, ellipsoid_map, np, 1e-5,
+    [alpha](const internal::Index_matrix& F, const internal::Vector& population, const internal::Matrix& x,
+            const internal::Engine_options& options, const internal::Spd_solver& diffusion_solver) {
+      internal::Radii_search_flow flow(F, population, x, alpha, options.time_step, diffusion_solver);
+      flow.start(x);
+      return flow;
+    });
 }
 
 } // namespace Density_equalizing_maps
