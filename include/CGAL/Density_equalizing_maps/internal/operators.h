@@ -79,15 +79,33 @@ public:
 
   void build(const Index_matrix& F, Eigen::Index n)
   {
-    std::vector<Triplet> t;
-    t.reserve(static_cast<std::size_t>(9 * F.rows() + n));
-    for(Eigen::Index i = 0; i < n; ++i) t.emplace_back(int(i), int(i), 0.);
+    // The pattern is the vertex adjacency plus the diagonal. Built column by
+    // column from the vertex-face incidence (small sorted lists), which is
+    // several times cheaper than setFromTriplets on 9 m + n triplets.
+    std::vector<int> first(static_cast<std::size_t>(n) + 1, 0);
     for(Eigen::Index k = 0; k < F.rows(); ++k)
-      for(int a = 0; a < 3; ++a)
-        for(int b = 0; b < 3; ++b) t.emplace_back(F(k, a), F(k, b), 0.);
-    m_pattern.resize(n, n);
-    m_pattern.setFromTriplets(t.begin(), t.end());
-    m_pattern.makeCompressed();
+      for(int a = 0; a < 3; ++a) ++first[F(k, a) + 1];
+    for(Eigen::Index i = 0; i < n; ++i) first[i + 1] += first[i];
+    std::vector<int> incident(static_cast<std::size_t>(first[n]));
+    {
+      std::vector<int> next(first.begin(), first.end() - 1);
+      for(Eigen::Index k = 0; k < F.rows(); ++k)
+        for(int a = 0; a < 3; ++a) incident[next[F(k, a)]++] = int(k);
+    }
+    std::vector<int> outer(static_cast<std::size_t>(n) + 1, 0), inner, column;
+    inner.reserve(static_cast<std::size_t>(7 * n));
+    for(Eigen::Index c = 0; c < n; ++c) {
+      column.assign(1, int(c));
+      for(int s = first[c]; s < first[c + 1]; ++s)
+        for(int a = 0; a < 3; ++a) column.push_back(F(incident[s], a));
+      std::sort(column.begin(), column.end());
+      column.erase(std::unique(column.begin(), column.end()), column.end());
+      inner.insert(inner.end(), column.begin(), column.end());
+      outer[c + 1] = int(inner.size());
+    }
+    std::vector<double> zeros(inner.size(), 0.);
+    m_pattern = Eigen::Map<const Sparse_matrix>(n, n, Eigen::Index(inner.size()), outer.data(), inner.data(),
+                                                zeros.data());
     m_slot.resize(F.rows(), 9);
     for(Eigen::Index k = 0; k < F.rows(); ++k)
       for(int a = 0; a < 3; ++a)
