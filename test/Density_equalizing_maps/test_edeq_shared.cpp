@@ -28,8 +28,6 @@ typedef std::array<double, 3> Radii;
 
 namespace {
 
-using dem_edem_cases::max_level_deviation;
-
 void edeq_case(const std::string& name)
 {
   Mesh m;

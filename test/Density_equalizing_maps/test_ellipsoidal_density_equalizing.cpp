@@ -27,34 +27,6 @@ typedef std::array<double, 3> Radii;
 
 namespace {
 
-const Point sentinel(7, 7, 7);
-
-Point_map output_map(Mesh& m, const std::string& name)
-{
-  Point_map out = m.add_property_map<vertex_descriptor, Point>(name, sentinel).first;
-  for(vertex_descriptor v : vertices(m)) put(out, v, sentinel);
-  return out;
-}
-
-bool untouched(const Mesh& m, const Point_map& out)
-{
-  for(vertex_descriptor v : vertices(m))
-    if(get(out, v) != sentinel) return false;
-  return true;
-}
-
-/// max |x^2/a^2 + y^2/b^2 + z^2/c^2 - 1| over the vertices
-double max_level_deviation(const Mesh& m, const Point_map& out, const Radii& r)
-{
-  double d = 0;
-  for(vertex_descriptor v : vertices(m)) {
-    const Point& p = get(out, v);
-    d = std::max(d, std::abs(p.x() * p.x() / (r[0] * r[0]) + p.y() * p.y() / (r[1] * r[1]) +
-                             p.z() * p.z() / (r[2] * r[2]) - 1));
-  }
-  return d;
-}
-
 double face_area(const Mesh& m, face_descriptor f)
 {
   const auto h = m.halfedge(f);

@@ -25,16 +25,6 @@ typedef Mesh::Property_map<face_descriptor, double> Face_values;
 
 namespace {
 
-double max_sphere_deviation(const Mesh& m, const Point_map& out)
-{
-  double d = 0;
-  for(vertex_descriptor v : vertices(m)) {
-    const Point& p = get(out, v);
-    d = std::max(d, std::abs(std::sqrt(p.x() * p.x() + p.y() * p.y() + p.z() * p.z()) - 1));
-  }
-  return d;
-}
-
 void check_output(const Mesh& m, const Point_map& out, const DEM::Map_report& r, const std::string& name)
 {
   const std::size_t folds = DEM::number_of_fold_overs(m, out);

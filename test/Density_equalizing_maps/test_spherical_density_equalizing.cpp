@@ -28,32 +28,6 @@ typedef Mesh::Property_map<vertex_descriptor, double> Vertex_values;
 
 namespace {
 
-const Point sentinel(7, 7, 7);
-
-Point_map output_map(Mesh& m, const std::string& name)
-{
-  Point_map out = m.add_property_map<vertex_descriptor, Point>(name, sentinel).first;
-  for(vertex_descriptor v : vertices(m)) put(out, v, sentinel);
-  return out;
-}
-
-bool untouched(const Mesh& m, const Point_map& out)
-{
-  for(vertex_descriptor v : vertices(m))
-    if(get(out, v) != sentinel) return false;
-  return true;
-}
-
-double max_sphere_deviation(const Mesh& m, const Point_map& out)
-{
-  double d = 0;
-  for(vertex_descriptor v : vertices(m)) {
-    const Point& p = get(out, v);
-    d = std::max(d, std::abs(std::sqrt(p.x() * p.x() + p.y() * p.y() + p.z() * p.z()) - 1));
-  }
-  return d;
-}
-
 double face_area(const Mesh& m, face_descriptor f)
 {
   const auto h = m.halfedge(f);

@@ -31,17 +31,6 @@ typedef Mesh::Property_map<vertex_descriptor, Point> Point_map;
 typedef Mesh::Property_map<face_descriptor, double> Face_values;
 typedef std::array<double, 3> Radii;
 
-inline double max_level_deviation(const Mesh& m, const Point_map& out, const Radii& r)
-{
-  double d = 0;
-  for(vertex_descriptor v : vertices(m)) {
-    const Point& p = get(out, v);
-    d = std::max(d, std::abs(p.x() * p.x() / (r[0] * r[0]) + p.y() * p.y() / (r[1] * r[1]) +
-                             p.z() * p.z() / (r[2] * r[2]) - 1));
-  }
-  return d;
-}
-
 inline void check_output(const Mesh& m, const Point_map& out, const DEM::Map_report& r, const Radii& radii,
                   const std::string& name, double seconds)
 {

@@ -16,6 +16,8 @@
 #include <CGAL/boost/graph/Euler_operations.h>
 #include <CGAL/boost/graph/IO/polygon_mesh_io.h>
 
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -501,6 +503,51 @@ inline std::vector<double> read_values(const std::string& path)
 inline std::vector<double> read_population(const std::string& name)
 {
   return read_values(data_path(name + ".population.txt"));
+}
+
+// ---------------------------------------------------------------------------
+// Output checks shared by the method tests.
+
+/// A vertex point map filled with a sentinel: `untouched()` then tells that a
+/// function that threw wrote nothing (no partial output).
+inline const Point& output_sentinel() { static const Point p(7, 7, 7); return p; }
+
+inline Mesh::Property_map<vertex_descriptor, Point> output_map(Mesh& m, const std::string& name)
+{
+  auto out = m.add_property_map<vertex_descriptor, Point>(name, output_sentinel()).first;
+  for(vertex_descriptor v : vertices(m)) put(out, v, output_sentinel());
+  return out;
+}
+
+inline bool untouched(const Mesh& m, const Mesh::Property_map<vertex_descriptor, Point>& out)
+{
+  for(vertex_descriptor v : vertices(m))
+    if(get(out, v) != output_sentinel()) return false;
+  return true;
+}
+
+/// max | |p| - 1 | over the mapped vertices
+inline double max_sphere_deviation(const Mesh& m, const Mesh::Property_map<vertex_descriptor, Point>& out)
+{
+  double d = 0;
+  for(vertex_descriptor v : vertices(m)) {
+    const Point& p = get(out, v);
+    d = std::max(d, std::abs(std::sqrt(p.x() * p.x() + p.y() * p.y() + p.z() * p.z()) - 1));
+  }
+  return d;
+}
+
+/// max |x^2/a^2 + y^2/b^2 + z^2/c^2 - 1| over the mapped vertices
+inline double max_level_deviation(const Mesh& m, const Mesh::Property_map<vertex_descriptor, Point>& out,
+                                  const std::array<double, 3>& r)
+{
+  double d = 0;
+  for(vertex_descriptor v : vertices(m)) {
+    const Point& p = get(out, v);
+    d = std::max(d, std::abs(p.x() * p.x() / (r[0] * r[0]) + p.y() * p.y() / (r[1] * r[1]) +
+                             p.z() * p.z() / (r[2] * r[2]) - 1));
+  }
+  return d;
 }
 
 } // namespace dem_test
