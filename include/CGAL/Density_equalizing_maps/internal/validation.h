@@ -55,48 +55,58 @@ inline Mesh_topology validate_closed_surface(const Matrix& X, const Index_matrix
                             ", out of range");
 
   // Every directed edge must occur once and its reverse once: anything else is
-  // a boundary, a non-manifold edge or inconsistent orientation. Sorted
-  // arrays rather than hash maps: this runs on every call, on large meshes.
-  struct Directed { long long key; Eigen::Index face; };
-  auto key = [nv](long long i, long long j) { return i * nv + j; };
-  std::vector<Directed> directed;
-  directed.reserve(static_cast<std::size_t>(3 * nf));
+  // a boundary, a non-manifold edge or inconsistent orientation. The directed
+  // edges are bucketed by their source vertex (a counting sort, linear time):
+  // a look-up scans the few edges leaving one vertex, which is cheaper than a
+  // global sort and binary searches, or a hash map, on large meshes.
+  std::vector<Eigen::Index> first_out(static_cast<std::size_t>(nv) + 1, 0);
   for(Eigen::Index k = 0; k < nf; ++k)
     for(int c = 0; c < 3; ++c) {
       const int i = F(k, c), j = F(k, (c + 1) % 3);
       if(i == j) throw Invalid_input("degenerate " + face_name(k) + ": repeated vertex " + std::to_string(i));
-      directed.push_back({key(i, j), k});
+      ++first_out[i + 1];
     }
-  std::sort(directed.begin(), directed.end(),
-            [](const Directed& a, const Directed& b) { return a.key < b.key || (a.key == b.key && a.face < b.face); });
-  auto find = [&](long long kk) -> const Directed* {
-    auto it = std::lower_bound(directed.begin(), directed.end(), kk,
-                               [](const Directed& d, long long v) { return d.key < v; });
-    return (it != directed.end() && it->key == kk) ? &*it : nullptr;
+  for(Eigen::Index i = 0; i < nv; ++i)
+    if(first_out[i + 1] == 0) throw Invalid_input("isolated " + vertex_name(i) + " belongs to no face");
+  // faces around vertex i = directed edges leaving i (one per corner)
+  auto incident_faces = [&](Eigen::Index i) { return first_out[i + 1] - first_out[i]; };
+  for(Eigen::Index i = 0; i < nv; ++i) first_out[i + 1] += first_out[i];
+  struct Out_edge { int target; Eigen::Index face; };
+  std::vector<Out_edge> out(static_cast<std::size_t>(3 * nf));
+  {
+    std::vector<Eigen::Index> fill(first_out.begin(), first_out.end() - 1);
+    for(Eigen::Index k = 0; k < nf; ++k)
+      for(int c = 0; c < 3; ++c) out[fill[F(k, c)]++] = {F(k, (c + 1) % 3), k};
+  }
+  // the face containing the directed edge (i, j), or -1
+  auto face_of_edge = [&](Eigen::Index i, int j) -> Eigen::Index {
+    for(Eigen::Index e = first_out[i]; e < first_out[i + 1]; ++e)
+      if(out[e].target == j) return out[e].face;
+    return -1;
   };
-  for(std::size_t e = 1; e < directed.size(); ++e)
-    if(directed[e].key == directed[e - 1].key) {
-      const long long i = directed[e].key / nv, j = directed[e].key % nv;
-      const bool both_ways = find(key(j, i)) != nullptr;
-      throw Invalid_input(std::string(both_ways ? "non-manifold edge (" : "inconsistent face orientation or non-manifold edge (") +
-                          std::to_string(i) + ", " + std::to_string(j) + ")" +
-                          (both_ways ? " shared by more than two faces" : "") + " (at " + face_name(directed[e].face) + ")");
-    }
+  {
+    std::vector<Eigen::Index> last_source(static_cast<std::size_t>(nv), -1);
+    for(Eigen::Index i = 0; i < nv; ++i)
+      for(Eigen::Index e = first_out[i]; e < first_out[i + 1]; ++e) {
+        const int j = out[e].target;
+        if(last_source[j] == i) {
+          const bool both_ways = face_of_edge(j, int(i)) >= 0;
+          throw Invalid_input(std::string(both_ways ? "non-manifold edge (" : "inconsistent face orientation or non-manifold edge (") +
+                              std::to_string(i) + ", " + std::to_string(j) + ")" +
+                              (both_ways ? " shared by more than two faces" : "") + " (at " + face_name(out[e].face) + ")");
+        }
+        last_source[j] = i;
+      }
+  }
   for(Eigen::Index k = 0; k < nf; ++k)
     for(int c = 0; c < 3; ++c) {
       const int i = F(k, c), j = F(k, (c + 1) % 3);
-      if(!find(key(j, i)))
+      if(face_of_edge(j, i) < 0)
         throw Invalid_input("open boundary: edge (" + std::to_string(i) + ", " + std::to_string(j) + ") of " +
                             face_name(k) + " has no opposite face; the mesh must be closed");
     }
-  auto face_of_edge = [&](long long i, long long j) { return find(key(i, j))->face; };
 
   // Non-manifold vertices: the faces around a vertex must form one fan.
-  std::vector<int> incident(static_cast<std::size_t>(nv), 0);
-  for(Eigen::Index k = 0; k < nf; ++k)
-    for(int c = 0; c < 3; ++c) ++incident[F(k, c)];
-  for(Eigen::Index i = 0; i < nv; ++i)
-    if(incident[i] == 0) throw Invalid_input("isolated " + vertex_name(i) + " belongs to no face");
   std::vector<char> visited(static_cast<std::size_t>(nv), 0);
   for(Eigen::Index k = 0; k < nf; ++k)
     for(int c = 0; c < 3; ++c) {
@@ -104,15 +114,15 @@ inline Mesh_topology validate_closed_surface(const Matrix& X, const Index_matrix
       if(visited[v]) continue;
       visited[v] = 1;
       // walk the fan: from face (v, a, b) go to the face containing edge (v, b)
-      int count = 0;
+      Eigen::Index count = 0;
       Eigen::Index f = k;
       do {
         ++count;
         int cv = 0;
         while(F(f, cv) != v) ++cv;
         f = face_of_edge(v, F(f, (cv + 2) % 3));
-      } while(f != k && count <= incident[v]);
-      if(count != incident[v])
+      } while(f != k && count <= incident_faces(v));
+      if(count != incident_faces(v))
         throw Invalid_input("non-manifold " + vertex_name(v) + ": its faces form more than one fan");
     }
 
@@ -135,7 +145,7 @@ inline Mesh_topology validate_closed_surface(const Matrix& X, const Index_matrix
   }
 
   Mesh_topology t;
-  t.edges = directed.size() / 2;
+  t.edges = static_cast<std::size_t>(3 * nf) / 2;
   t.euler_characteristic = static_cast<long>(nv) - static_cast<long>(t.edges) + static_cast<long>(nf);
   if(t.euler_characteristic != expected_euler) {
     const long g = (2 - t.euler_characteristic) / 2;
