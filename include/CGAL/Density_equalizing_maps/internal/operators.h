@@ -45,6 +45,43 @@ inline Vector face_areas(const Matrix& X, const Index_matrix& F)
   return A;
 }
 
+/// A subset of the faces with their source areas, and the vertices they use. Searches whose objective is a mean over faces (the Moebius area
+/// correction, the dilation of the ellipsoidal chart) run on such a sample and
+/// are polished or confirmed on all faces.
+struct Face_sample
+{
+  Index_matrix F;
+  Vector source_area;
+  std::vector<char> uses_vertex; // per vertex of the mesh
+  std::vector<Eigen::Index> vertices; // increasing
+};
+
+/// The faces `kept` (increasing) of F.
+inline Face_sample face_sample(const Index_matrix& F, const Vector& source_area, Eigen::Index n,
+                               const std::vector<Eigen::Index>& kept)
+{
+  Face_sample smp;
+  smp.F.resize(Eigen::Index(kept.size()), 3);
+  smp.source_area.resize(Eigen::Index(kept.size()));
+  smp.uses_vertex.assign(static_cast<std::size_t>(n), 0);
+  for(std::size_t j = 0; j < kept.size(); ++j) {
+    smp.F.row(Eigen::Index(j)) = F.row(kept[j]);
+    smp.source_area[Eigen::Index(j)] = source_area[kept[j]];
+    for(int c = 0; c < 3; ++c) smp.uses_vertex[F(kept[j], c)] = 1;
+  }
+  for(Eigen::Index i = 0; i < n; ++i)
+    if(smp.uses_vertex[i]) smp.vertices.push_back(i);
+  return smp;
+}
+
+/// Every `stride`-th face of F.
+inline Face_sample face_sample(const Index_matrix& F, const Vector& source_area, Eigen::Index n, Eigen::Index stride)
+{
+  std::vector<Eigen::Index> kept;
+  for(Eigen::Index k = 0; k < F.rows(); k += std::max<Eigen::Index>(stride, 1)) kept.push_back(k);
+  return face_sample(F, source_area, n, kept);
+}
+
 /// Signed areas of a planar chart (counter-clockwise positive).
 inline Vector signed_areas_2(const Matrix& X, const Index_matrix& F)
 {

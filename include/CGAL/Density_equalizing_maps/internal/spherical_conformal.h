@@ -235,30 +235,15 @@ inline Matrix mobius_area_correction(const Matrix& X, const Index_matrix& F, con
   };
   // The search runs on a sample of about 4000 faces (the objective is a mean
   // over faces), then is polished on all faces.
-  struct Sample { Index_matrix F; Vector area; std::vector<Eigen::Index> vertices; };
-  auto make_sample = [&](Eigen::Index stride) {
-    Sample smp;
-    const Eigen::Index m = (F.rows() + stride - 1) / stride;
-    smp.F.resize(m, 3);
-    smp.area.resize(m);
-    std::vector<char> used(static_cast<std::size_t>(S.rows()), 0);
-    for(Eigen::Index k = 0, j = 0; k < F.rows(); k += stride, ++j) {
-      smp.F.row(j) = F.row(k);
-      smp.area[j] = source_area[k];
-      for(int c = 0; c < 3; ++c) used[F(k, c)] = 1;
-    }
-    for(Eigen::Index i = 0; i < S.rows(); ++i) if(used[i]) smp.vertices.push_back(i);
-    return smp;
-  };
-  auto objective_on = [&](const Sample& smp) {
+  auto objective_on = [&](const Face_sample& smp) {
     return [&](const Eigen::Vector3d& xi) {
       if(xi.head<2>().norm() > 1e3 || std::abs(xi[2]) > 50) return std::numeric_limits<double>::infinity();
       apply(xi, smp.vertices);
-      return mean_abs_log_area_ratio(smp.area, face_areas(q, smp.F));
+      return mean_abs_log_area_ratio(smp.source_area, face_areas(q, smp.F));
     };
   };
-  const Sample all = make_sample(1);
-  const Sample coarse = make_sample(std::max<Eigen::Index>(1, F.rows() / 4000));
+  const Face_sample all = face_sample(F, source_area, S.rows(), 1);
+  const Face_sample coarse = face_sample(F, source_area, S.rows(), F.rows() / 4000);
   const double before = objective_on(all)(Eigen::Vector3d::Zero());
   Eigen::Vector3d best =
     nelder_mead_3(objective_on(coarse), Eigen::Vector3d::Zero(), Eigen::Vector3d(0.2, 0.2, 0.5), 400, 1e-8);
