@@ -146,7 +146,7 @@ public:
     m_slot.resize(F.rows(), 9);
     for(Eigen::Index k = 0; k < F.rows(); ++k)
       for(int a = 0; a < 3; ++a)
-        for(int b = 0; b < 3; ++b) m_slot(k, 3 * a + b) = slot(F(k, a), F(k, b));
+        for(int b = 0; b < 3; ++b) m_slot(k, 3 * a + b) = int(slot(F(k, a), F(k, b)));
     m_diag.resize(n);
     for(Eigen::Index i = 0; i < n; ++i) m_diag[i] = slot(i, i);
   }
@@ -175,7 +175,7 @@ private:
     return std::lower_bound(begin, end, int(r)) - inner;
   }
   Sparse_matrix m_pattern;
-  Eigen::Matrix<Eigen::Index, Eigen::Dynamic, 9> m_slot;
+  Eigen::Matrix<int, Eigen::Dynamic, 9> m_slot; // value slots; int like the matrix indices (half the memory)
   std::vector<Eigen::Index> m_diag;
 };
 

@@ -30,11 +30,11 @@ struct Flash_result
 
 /// Harmonic map of the mesh punctured at face `t` onto the plane: the three
 /// corners of `t` are pinned (big-triangle boundary), the rest solves L z = 0.
-inline bool punctured_harmonic_map(const Sparse_matrix& L_in, const Index_matrix& F, Eigen::Index t,
+/// `L` is taken by value and modified in place (one matrix alive, not two).
+inline bool punctured_harmonic_map(Sparse_matrix L, const Index_matrix& F, Eigen::Index t,
                                    const Complex corners[3], Spd_solver& solver, Complex_vector& z)
 {
-  const Eigen::Index n = L_in.rows();
-  Sparse_matrix L = L_in;
+  const Eigen::Index n = L.rows();
   std::vector<char> fixed(static_cast<std::size_t>(n), 0);
   Matrix values = Matrix::Zero(n, 2), rhs = Matrix::Zero(n, 2), sol;
   for(int a = 0; a < 3; ++a) {
@@ -71,7 +71,9 @@ inline Flash_result flash_spherical_map(const Matrix& X, const Index_matrix& F, 
   const Face_block_assembler assembler(F, n);
   std::unique_ptr<Spd_solver> solver = prototype.clone();
   Complex_vector z;
-  bool ok = punctured_harmonic_map(assembler.assemble(cotangent_stiffness_blocks(X, F)), F, t, cot_corners, *solver, z);
+  // the m x 9 blocks die before the factorization, the memory peak
+  Sparse_matrix L = assembler.assemble(cotangent_stiffness_blocks(X, F));
+  bool ok = punctured_harmonic_map(std::move(L), F, t, cot_corners, *solver, z);
   Matrix S;
   auto balance_and_lift = [&](Complex_vector& zz) {
     zz.array() -= zz.mean();
