@@ -11,6 +11,7 @@
 #include <CGAL/Density_equalizing_maps/internal/sparse_solver.h>
 
 #include <complex>
+#include <vector>
 
 namespace CGAL {
 namespace Density_equalizing_maps {
@@ -95,32 +96,59 @@ inline Complex_vector metric_beltrami_coefficient(const Matrix& P, const Matrix&
   return mu;
 }
 
-/// |mu| per face of the PL map between two 3D triangle meshes with the same
-/// connectivity: (s1 - s2) / (s1 + s2) with s1 >= s2 the singular values of
-/// the affine map between the triangles. Blind to orientation.
-inline Vector beltrami_magnitude_3d(const Matrix& X, const Matrix& Y, const Index_matrix& F)
+/// |mu| per face of the PL maps from a fixed 3D triangle mesh X to meshes Y
+/// with the same connectivity: (s1 - s2) / (s1 + s2) with s1 >= s2 the
+/// singular values of the affine map between the triangles. Blind to
+/// orientation. Each triangle is flattened isometrically into its own plane;
+/// those of X, and their derivative weights, are computed once (EDEQ measures
+/// its Beltrami term from the same starting map on every candidate).
+class Beltrami_magnitude_from_reference
 {
-  auto flatten = [](const Matrix& Z, const Eigen::Vector3i& f, Eigen::Vector2d q[3]) {
-    const Eigen::Vector3d a = row3(Z, f[0]), b = row3(Z, f[1]), c = row3(Z, f[2]);
+public:
+  Beltrami_magnitude_from_reference(const Matrix& X, const Index_matrix& F) : m_F(F)
+  {
+    m_derivatives.resize(static_cast<std::size_t>(F.rows()));
+    for(Eigen::Index k = 0; k < F.rows(); ++k) {
+      Eigen::Vector2d p[3];
+      flatten(X, k, p);
+      m_derivatives[static_cast<std::size_t>(k)] = planar_derivative(p);
+    }
+  }
+
+  Vector operator()(const Matrix& Y) const
+  {
+    Vector m(m_F.rows());
+    for(Eigen::Index k = 0; k < m_F.rows(); ++k) {
+      Eigen::Vector2d q[3];
+      flatten(Y, k, q);
+      const Planar_derivative& d = m_derivatives[static_cast<std::size_t>(k)];
+      Complex wx(0, 0), wy(0, 0);
+      for(int a = 0; a < 3; ++a) {
+        const Complex w(q[a].x(), q[a].y());
+        wx += d.dx[a] * w; wy += d.dy[a] * w;
+      }
+      m[k] = std::min(1., std::sqrt(std::norm(beltrami_from_derivatives(wx, wy)))); // std::abs calls hypot: slow
+    }
+    return m;
+  }
+
+private:
+  void flatten(const Matrix& Z, Eigen::Index k, Eigen::Vector2d q[3]) const
+  {
+    const Eigen::Vector3d a = row3(Z, m_F(k, 0)), b = row3(Z, m_F(k, 1)), c = row3(Z, m_F(k, 2));
     const Eigen::Vector3d u = b - a, w = c - a;
     const double lu = u.norm();
     const double x = u.dot(w) / lu, y = u.cross(w).norm() / lu;
     q[0] = Eigen::Vector2d(0, 0); q[1] = Eigen::Vector2d(lu, 0); q[2] = Eigen::Vector2d(x, y);
-  };
-  Vector m(F.rows());
-  for(Eigen::Index k = 0; k < F.rows(); ++k) {
-    const Eigen::Vector3i f = F.row(k).transpose();
-    Eigen::Vector2d p[3], q[3];
-    flatten(X, f, p); flatten(Y, f, q);
-    const Planar_derivative d = planar_derivative(p);
-    Complex wx(0, 0), wy(0, 0);
-    for(int a = 0; a < 3; ++a) {
-      const Complex w(q[a].x(), q[a].y());
-      wx += d.dx[a] * w; wy += d.dy[a] * w;
-    }
-    m[k] = std::min(1., std::sqrt(std::norm(beltrami_from_derivatives(wx, wy)))); // std::abs calls hypot: slow
   }
-  return m;
+
+  Index_matrix m_F;
+  std::vector<Planar_derivative> m_derivatives;
+};
+
+inline Vector beltrami_magnitude_3d(const Matrix& X, const Matrix& Y, const Index_matrix& F)
+{
+  return Beltrami_magnitude_from_reference(X, F)(Y);
 }
 
 /// Shrinks |mu| to at most `bound` (< 1) keeping the argument.

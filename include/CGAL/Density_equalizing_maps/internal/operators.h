@@ -182,28 +182,66 @@ inline Sparse_matrix graph_laplacian(const Index_matrix& F, Eigen::Index n)
 }
 
 /// Diagonal of the barycentric lumped mass matrix: A_ii = sum of |T|/3 over T containing i.
-inline Vector lumped_mass(const Matrix& X, const Index_matrix& F)
+inline Vector lumped_mass(const Vector& face_area, const Index_matrix& F, Eigen::Index n)
 {
-  const Vector a = face_areas(X, F);
-  Vector A = Vector::Zero(X.rows());
+  Vector A = Vector::Zero(n);
   for(Eigen::Index k = 0; k < F.rows(); ++k)
-    for(int c = 0; c < 3; ++c) A[F(k, c)] += a[k] / 3.;
+    for(int c = 0; c < 3; ++c) A[F(k, c)] += face_area[k] / 3.;
   return A;
 }
 
-/// Area-weighted face-to-vertex averaging M (n x m, rows sum to 1).
+inline Vector lumped_mass(const Matrix& X, const Index_matrix& F) { return lumped_mass(face_areas(X, F), F, X.rows()); }
+
+/// Area-weighted face-to-vertex averaging M (n x m, rows sum to 1),
+/// M_ik = |T_k| / sum_{T_l > i} |T_l| for the corners i of T_k. Its pattern
+/// (column k: the three corners of face k, sorted) depends on the
+/// connectivity only, so it is built once and re-assembly writes the weights
+/// (the density-equalizing loops need M on every accepted map).
+class Face_to_vertex_assembler
+{
+public:
+  Face_to_vertex_assembler() = default;
+  Face_to_vertex_assembler(const Index_matrix& F, Eigen::Index n) { build(F, n); }
+
+  void build(const Index_matrix& F, Eigen::Index n)
+  {
+    const Eigen::Index m = F.rows();
+    m_corners.resize(m, 3);
+    m_pattern = Sparse_matrix(n, m);
+    m_pattern.resizeNonZeros(3 * m);
+    int* outer = m_pattern.outerIndexPtr();
+    int* inner = m_pattern.innerIndexPtr();
+    for(Eigen::Index k = 0; k < m; ++k) {
+      int corner[3] = {F(k, 0), F(k, 1), F(k, 2)};
+      std::sort(corner, corner + 3);
+      outer[k] = int(3 * k);
+      for(int c = 0; c < 3; ++c) inner[3 * k + c] = m_corners(k, c) = corner[c];
+    }
+    outer[m] = int(3 * m);
+    std::fill(m_pattern.valuePtr(), m_pattern.valuePtr() + 3 * m, 0.);
+  }
+
+  Sparse_matrix assemble(const Vector& face_area) const
+  {
+    const Eigen::Index m = m_corners.rows();
+    Vector total = Vector::Zero(m_pattern.rows());
+    for(Eigen::Index k = 0; k < m; ++k)
+      for(int c = 0; c < 3; ++c) total[m_corners(k, c)] += face_area[k];
+    Sparse_matrix M = m_pattern;
+    double* v = M.valuePtr();
+    for(Eigen::Index k = 0; k < m; ++k)
+      for(int c = 0; c < 3; ++c) v[3 * k + c] = face_area[k] / total[m_corners(k, c)];
+    return M;
+  }
+
+private:
+  Index_matrix m_corners; // per face, sorted: the order of column k
+  Sparse_matrix m_pattern;
+};
+
 inline Sparse_matrix face_to_vertex(const Vector& face_area, const Index_matrix& F, Eigen::Index n)
 {
-  Vector total = Vector::Zero(n);
-  for(Eigen::Index k = 0; k < F.rows(); ++k)
-    for(int c = 0; c < 3; ++c) total[F(k, c)] += face_area[k];
-  std::vector<Triplet> t;
-  t.reserve(static_cast<std::size_t>(3 * F.rows()));
-  for(Eigen::Index k = 0; k < F.rows(); ++k)
-    for(int c = 0; c < 3; ++c) t.emplace_back(F(k, c), int(k), face_area[k] / total[F(k, c)]);
-  Sparse_matrix M(n, F.rows());
-  M.setFromTriplets(t.begin(), t.end());
-  return M;
+  return Face_to_vertex_assembler(F, n).assemble(face_area);
 }
 
 /// Per-face gradient of a P1 function g on a surface (m x 3):
