@@ -108,34 +108,41 @@ public:
   Beltrami_magnitude_from_reference(const Matrix& X, const Index_matrix& F) : m_F(F)
   {
     m_derivatives.resize(static_cast<std::size_t>(F.rows()));
-    for(Eigen::Index k = 0; k < F.rows(); ++k) {
-      Eigen::Vector2d p[3];
-      flatten(X, k, p);
-      m_derivatives[static_cast<std::size_t>(k)] = planar_derivative(p);
-    }
+    for(Eigen::Index k = 0; k < F.rows(); ++k) m_derivatives[static_cast<std::size_t>(k)] = flat_derivative(X, F, k);
   }
 
   Vector operator()(const Matrix& Y) const
   {
     Vector m(m_F.rows());
-    for(Eigen::Index k = 0; k < m_F.rows(); ++k) {
-      Eigen::Vector2d q[3];
-      flatten(Y, k, q);
-      const Planar_derivative& d = m_derivatives[static_cast<std::size_t>(k)];
-      Complex wx(0, 0), wy(0, 0);
-      for(int a = 0; a < 3; ++a) {
-        const Complex w(q[a].x(), q[a].y());
-        wx += d.dx[a] * w; wy += d.dy[a] * w;
-      }
-      m[k] = std::min(1., std::sqrt(std::norm(beltrami_from_derivatives(wx, wy)))); // std::abs calls hypot: slow
-    }
+    for(Eigen::Index k = 0; k < m_F.rows(); ++k) m[k] = magnitude(m_derivatives[static_cast<std::size_t>(k)], Y, m_F, k);
     return m;
   }
 
-private:
-  void flatten(const Matrix& Z, Eigen::Index k, Eigen::Vector2d q[3]) const
+  /// the derivative weights of face k of Z, flattened
+  static Planar_derivative flat_derivative(const Matrix& Z, const Index_matrix& F, Eigen::Index k)
   {
-    const Eigen::Vector3d a = row3(Z, m_F(k, 0)), b = row3(Z, m_F(k, 1)), c = row3(Z, m_F(k, 2));
+    Eigen::Vector2d p[3];
+    flatten(Z, F, k, p);
+    return planar_derivative(p);
+  }
+
+  /// |mu| of face k from the flattened source triangle (weights d) to Y
+  static double magnitude(const Planar_derivative& d, const Matrix& Y, const Index_matrix& F, Eigen::Index k)
+  {
+    Eigen::Vector2d q[3];
+    flatten(Y, F, k, q);
+    Complex wx(0, 0), wy(0, 0);
+    for(int a = 0; a < 3; ++a) {
+      const Complex w(q[a].x(), q[a].y());
+      wx += d.dx[a] * w; wy += d.dy[a] * w;
+    }
+    return std::min(1., std::sqrt(std::norm(beltrami_from_derivatives(wx, wy)))); // std::abs calls hypot: slow
+  }
+
+private:
+  static void flatten(const Matrix& Z, const Index_matrix& F, Eigen::Index k, Eigen::Vector2d q[3])
+  {
+    const Eigen::Vector3d a = row3(Z, F(k, 0)), b = row3(Z, F(k, 1)), c = row3(Z, F(k, 2));
     const Eigen::Vector3d u = b - a, w = c - a;
     const double lu = u.norm();
     const double x = u.dot(w) / lu, y = u.cross(w).norm() / lu;
@@ -146,9 +153,13 @@ private:
   std::vector<Planar_derivative> m_derivatives;
 };
 
+/// The same for a single map X -> Y, without storing X's weights.
 inline Vector beltrami_magnitude_3d(const Matrix& X, const Matrix& Y, const Index_matrix& F)
 {
-  return Beltrami_magnitude_from_reference(X, F)(Y);
+  typedef Beltrami_magnitude_from_reference B;
+  Vector m(F.rows());
+  for(Eigen::Index k = 0; k < F.rows(); ++k) m[k] = B::magnitude(B::flat_derivative(X, F, k), Y, F, k);
+  return m;
 }
 
 /// Shrinks |mu| to at most `bound` (< 1) keeping the argument.

@@ -205,38 +205,35 @@ public:
 
   void build(const Index_matrix& F, Eigen::Index n)
   {
-    const Eigen::Index m = F.rows();
-    m_corners.resize(m, 3);
-    m_pattern = Sparse_matrix(n, m);
-    m_pattern.resizeNonZeros(3 * m);
-    int* outer = m_pattern.outerIndexPtr();
-    int* inner = m_pattern.innerIndexPtr();
-    for(Eigen::Index k = 0; k < m; ++k) {
-      int corner[3] = {F(k, 0), F(k, 1), F(k, 2)};
+    m_rows = n;
+    m_corners.resize(static_cast<std::size_t>(3 * F.rows()));
+    for(Eigen::Index k = 0; k < F.rows(); ++k) {
+      int* corner = &m_corners[static_cast<std::size_t>(3 * k)];
+      for(int c = 0; c < 3; ++c) corner[c] = F(k, c);
       std::sort(corner, corner + 3);
-      outer[k] = int(3 * k);
-      for(int c = 0; c < 3; ++c) inner[3 * k + c] = m_corners(k, c) = corner[c];
     }
-    outer[m] = int(3 * m);
-    std::fill(m_pattern.valuePtr(), m_pattern.valuePtr() + 3 * m, 0.);
   }
 
   Sparse_matrix assemble(const Vector& face_area) const
   {
-    const Eigen::Index m = m_corners.rows();
-    Vector total = Vector::Zero(m_pattern.rows());
+    const Eigen::Index m = face_area.size();
+    Vector total = Vector::Zero(m_rows);
     for(Eigen::Index k = 0; k < m; ++k)
-      for(int c = 0; c < 3; ++c) total[m_corners(k, c)] += face_area[k];
-    Sparse_matrix M = m_pattern;
+      for(int c = 0; c < 3; ++c) total[m_corners[3 * k + c]] += face_area[k];
+    Sparse_matrix M(m_rows, m);
+    M.resizeNonZeros(3 * m);
+    int* outer = M.outerIndexPtr();
+    for(Eigen::Index k = 0; k <= m; ++k) outer[k] = int(3 * k);
+    std::copy(m_corners.begin(), m_corners.end(), M.innerIndexPtr());
     double* v = M.valuePtr();
     for(Eigen::Index k = 0; k < m; ++k)
-      for(int c = 0; c < 3; ++c) v[3 * k + c] = face_area[k] / total[m_corners(k, c)];
+      for(int c = 0; c < 3; ++c) v[3 * k + c] = face_area[k] / total[m_corners[3 * k + c]];
     return M;
   }
 
 private:
-  Index_matrix m_corners; // per face, sorted: the order of column k
-  Sparse_matrix m_pattern;
+  Eigen::Index m_rows = 0;
+  std::vector<int> m_corners; // 3 k + c, c = 0, 1, 2: the corners of face k, sorted (column k of M)
 };
 
 inline Sparse_matrix face_to_vertex(const Vector& face_area, const Index_matrix& F, Eigen::Index n)
