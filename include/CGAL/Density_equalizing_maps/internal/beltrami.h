@@ -11,6 +11,7 @@
 #include <CGAL/Density_equalizing_maps/internal/sparse_solver.h>
 
 #include <complex>
+#include <vector>
 
 namespace CGAL {
 namespace Density_equalizing_maps {
@@ -95,31 +96,69 @@ inline Complex_vector metric_beltrami_coefficient(const Matrix& P, const Matrix&
   return mu;
 }
 
-/// |mu| per face of the PL map between two 3D triangle meshes with the same
-/// connectivity: (s1 - s2) / (s1 + s2) with s1 >= s2 the singular values of
-/// the affine map between the triangles. Blind to orientation.
-inline Vector beltrami_magnitude_3d(const Matrix& X, const Matrix& Y, const Index_matrix& F)
+/// |mu| per face of the PL maps from a fixed 3D triangle mesh X to meshes Y
+/// with the same connectivity: (s1 - s2) / (s1 + s2) with s1 >= s2 the
+/// singular values of the affine map between the triangles. Blind to
+/// orientation. Each triangle is flattened isometrically into its own plane;
+/// those of X, and their derivative weights, are computed once (EDEQ measures
+/// its Beltrami term from the same starting map on every candidate).
+class Beltrami_magnitude_from_reference
 {
-  auto flatten = [](const Matrix& Z, const Eigen::Vector3i& f, Eigen::Vector2d q[3]) {
-    const Eigen::Vector3d a = row3(Z, f[0]), b = row3(Z, f[1]), c = row3(Z, f[2]);
-    const Eigen::Vector3d u = b - a, w = c - a;
-    const double lu = u.norm();
-    const double x = u.dot(w) / lu, y = u.cross(w).norm() / lu;
-    q[0] = Eigen::Vector2d(0, 0); q[1] = Eigen::Vector2d(lu, 0); q[2] = Eigen::Vector2d(x, y);
-  };
-  Vector m(F.rows());
-  for(Eigen::Index k = 0; k < F.rows(); ++k) {
-    const Eigen::Vector3i f = F.row(k).transpose();
-    Eigen::Vector2d p[3], q[3];
-    flatten(X, f, p); flatten(Y, f, q);
-    const Planar_derivative d = planar_derivative(p);
+public:
+  Beltrami_magnitude_from_reference(const Matrix& X, const Index_matrix& F) : m_F(F)
+  {
+    m_derivatives.resize(static_cast<std::size_t>(F.rows()));
+    for(Eigen::Index k = 0; k < F.rows(); ++k) m_derivatives[static_cast<std::size_t>(k)] = flat_derivative(X, F, k);
+  }
+
+  Vector operator()(const Matrix& Y) const
+  {
+    Vector m(m_F.rows());
+    for(Eigen::Index k = 0; k < m_F.rows(); ++k) m[k] = magnitude(m_derivatives[static_cast<std::size_t>(k)], Y, m_F, k);
+    return m;
+  }
+
+  /// the derivative weights of face k of Z, flattened
+  static Planar_derivative flat_derivative(const Matrix& Z, const Index_matrix& F, Eigen::Index k)
+  {
+    Eigen::Vector2d p[3];
+    flatten(Z, F, k, p);
+    return planar_derivative(p);
+  }
+
+  /// |mu| of face k from the flattened source triangle (weights d) to Y
+  static double magnitude(const Planar_derivative& d, const Matrix& Y, const Index_matrix& F, Eigen::Index k)
+  {
+    Eigen::Vector2d q[3];
+    flatten(Y, F, k, q);
     Complex wx(0, 0), wy(0, 0);
     for(int a = 0; a < 3; ++a) {
       const Complex w(q[a].x(), q[a].y());
       wx += d.dx[a] * w; wy += d.dy[a] * w;
     }
-    m[k] = std::min(1., std::sqrt(std::norm(beltrami_from_derivatives(wx, wy)))); // std::abs calls hypot: slow
+    return std::min(1., std::sqrt(std::norm(beltrami_from_derivatives(wx, wy)))); // std::abs calls hypot: slow
   }
+
+private:
+  static void flatten(const Matrix& Z, const Index_matrix& F, Eigen::Index k, Eigen::Vector2d q[3])
+  {
+    const Eigen::Vector3d a = row3(Z, F(k, 0)), b = row3(Z, F(k, 1)), c = row3(Z, F(k, 2));
+    const Eigen::Vector3d u = b - a, w = c - a;
+    const double lu = u.norm();
+    const double x = u.dot(w) / lu, y = u.cross(w).norm() / lu;
+    q[0] = Eigen::Vector2d(0, 0); q[1] = Eigen::Vector2d(lu, 0); q[2] = Eigen::Vector2d(x, y);
+  }
+
+  Index_matrix m_F;
+  std::vector<Planar_derivative> m_derivatives;
+};
+
+/// The same for a single map X -> Y, without storing X's weights.
+inline Vector beltrami_magnitude_3d(const Matrix& X, const Matrix& Y, const Index_matrix& F)
+{
+  typedef Beltrami_magnitude_from_reference B;
+  Vector m(F.rows());
+  for(Eigen::Index k = 0; k < F.rows(); ++k) m[k] = B::magnitude(B::flat_derivative(X, F, k), Y, F, k);
   return m;
 }
 

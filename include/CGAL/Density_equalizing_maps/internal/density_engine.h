@@ -70,13 +70,25 @@ struct Flow_state
   const Vector& diffused_density;
 };
 
+/// What the engine computes on an accepted map x: the face-to-vertex
+/// averaging M, the re-coupled vertex density rho = M (population / |T|), its
+/// implicit diffusion step rho+ and the vertex gradient M grad rho+ (the
+/// velocity is its quotient by -rho+).
+struct Map_diffusion
+{
+  Matrix map; // x
+  Sparse_matrix face_to_vertex;
+  Vector density, diffused;
+  Matrix vertex_gradient;
+};
+
 /// Plain density equalization: direction = tangential part of -grad(rho)/rho.
 struct Density_flow
 {
   void before_step(Matrix&) {}
-  /// A flow that has already diffused the density on exactly this map (EDEQ's
-  /// energy does) hands it over instead of the engine solving again.
-  bool diffused_density(const Matrix&, Vector&) { return false; }
+  /// A flow that has already evaluated the diffusion on exactly this map
+  /// (EDEQ's energy does) hands it over instead of the engine redoing it.
+  const Map_diffusion* diffusion_on(const Matrix&) const { return nullptr; }
   void direction(const Flow_state&, Matrix&) {}
   /// the stopping quantity, given the default one (sd/mean of the density)
   double stop_measure(const Matrix&, const Matrix&, double density_error) { return density_error; }
@@ -97,8 +109,18 @@ Engine_result run_density_equalization(Domain& domain, Flow& flow, Matrix& x, co
   // M is needed for the re-coupled density and, on the same map, for the
   // next velocity: compute it once per accepted map. (Flows' before_step
   // hooks are isometries of the domain, which leave M unchanged.)
-  Sparse_matrix M = domain.face_to_vertex(x);
-  Vector rho = densities(population, domain.density_area(x), M).vertex;
+  Sparse_matrix M;
+  Vector rho;
+  auto recouple = [&]() {
+    if(const Map_diffusion* known = flow.diffusion_on(x)) {
+      M = known->face_to_vertex;
+      rho = known->density;
+    } else {
+      M = domain.face_to_vertex(x);
+      rho = densities(population, domain.density_area(x), M).vertex;
+    }
+  };
+  recouple();
   res.initial_error = relative_sd(rho);
   double error = res.initial_error;
   res.final_error = error;
@@ -111,9 +133,14 @@ Engine_result run_density_equalization(Domain& domain, Flow& flow, Matrix& x, co
     const Matrix x_previous = x;
     flow.before_step(x);
 
-    // implicit diffusion step (A + dt L) rho+ = A rho on the fixed pattern
+    // implicit diffusion step (A + dt L) rho+ = A rho on the fixed pattern,
+    // then the velocity -grad(rho+)/rho+ at the vertices, tangential part
     Vector rho_plus;
-    if(!flow.diffused_density(x, rho_plus)) {
+    Matrix v;
+    if(const Map_diffusion* known = flow.diffusion_on(x)) {
+      rho_plus = known->diffused;
+      v = known->vertex_gradient;
+    } else {
       const Vector A = domain.mass(x);
       const Sparse_matrix K = domain.assembler().assemble(dt * domain.stiffness_blocks(x), &A);
       Matrix rhs = A.cwiseProduct(rho), rho_plus_m;
@@ -124,10 +151,8 @@ Engine_result run_density_equalization(Domain& domain, Flow& flow, Matrix& x, co
         break;
       }
       rho_plus = rho_plus_m.col(0);
+      v = M * domain.face_gradient(x, rho_plus);
     }
-
-    // velocity -grad(rho+)/rho+ at the vertices, tangential part
-    Matrix v = M * domain.face_gradient(x, rho_plus);
     for(Eigen::Index i = 0; i < n; ++i) v.row(i) /= -rho_plus[i];
     Matrix d = domain.tangent_part(x, v);
     flow.direction(Flow_state{x, rho_plus}, d);
@@ -142,8 +167,7 @@ Engine_result run_density_equalization(Domain& domain, Flow& flow, Matrix& x, co
     x.swap(x_new);
     ++res.iterations;
     flow.after_step(res.iterations, x, domain);
-    M = domain.face_to_vertex(x);
-    rho = densities(population, domain.density_area(x), M).vertex;
+    recouple();
     error = flow.stop_measure(x_previous, x, opt.stop_on_recoupled_density ? relative_sd(rho) : relative_sd(rho_plus));
     res.final_error = error;
     if(opt.progress && !opt.progress(res.iterations, error)) { res.termination = Termination::CANCELLED; break; }

@@ -175,7 +175,7 @@ public:
   /// reference of the fold-over repair.
   Ellipsoid_domain(const Index_matrix& F, const Matrix& initial, const Eigen::Vector3d& radii, double truncation,
                    const Spd_solver& prototype)
-    : m_F(F), m_radii(radii), m_assembler(F, initial.rows()),
+    : m_F(F), m_radii(radii), m_assembler(F, initial.rows()), m_averaging(F, initial.rows()),
       m_repair(F, to_unit_sphere(initial, radii), truncation, prototype),
       m_vertex_faces(vertex_face_incidence(F, initial.rows()))
   {
@@ -190,7 +190,7 @@ public:
 
   Vector mass(const Matrix& x) const { return lumped_mass(x, m_F); }
   Matrix stiffness_blocks(const Matrix& x) const { return cotangent_stiffness_blocks(x, m_F); }
-  Sparse_matrix face_to_vertex(const Matrix& x) const { return internal::face_to_vertex(face_areas(x, m_F), m_F, x.rows()); }
+  Sparse_matrix face_to_vertex(const Matrix& x) const { return m_averaging.assemble(face_areas(x, m_F)); }
   Matrix face_gradient(const Matrix& x, const Vector& g) const { return internal::face_gradient(x, m_F, g); }
   Vector density_area(const Matrix& x) const { return face_areas(x, m_F); }
 
@@ -253,6 +253,7 @@ private:
   const Index_matrix& m_F;
   Eigen::Vector3d m_radii;
   Face_block_assembler m_assembler;
+  Face_to_vertex_assembler m_averaging;
   Spherical_chart_repair m_repair;
   std::vector<std::vector<Eigen::Index> > m_vertex_faces;
   Eigen::Index m_pole = 0;

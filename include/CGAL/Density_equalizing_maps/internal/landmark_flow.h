@@ -49,7 +49,7 @@ struct Landmark_flow
     return p;
   }
 
-  bool diffused_density(const Matrix&, Vector&) { return false; }
+  const Map_diffusion* diffusion_on(const Matrix&) const { return nullptr; }
 
   void before_step(Matrix& x)
   {

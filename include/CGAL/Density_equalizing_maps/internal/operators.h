@@ -219,28 +219,63 @@ inline Sparse_matrix graph_laplacian(const Index_matrix& F, Eigen::Index n)
 }
 
 /// Diagonal of the barycentric lumped mass matrix: A_ii = sum of |T|/3 over T containing i.
-inline Vector lumped_mass(const Matrix& X, const Index_matrix& F)
+inline Vector lumped_mass(const Vector& face_area, const Index_matrix& F, Eigen::Index n)
 {
-  const Vector a = face_areas(X, F);
-  Vector A = Vector::Zero(X.rows());
+  Vector A = Vector::Zero(n);
   for(Eigen::Index k = 0; k < F.rows(); ++k)
-    for(int c = 0; c < 3; ++c) A[F(k, c)] += a[k] / 3.;
+    for(int c = 0; c < 3; ++c) A[F(k, c)] += face_area[k] / 3.;
   return A;
 }
 
-/// Area-weighted face-to-vertex averaging M (n x m, rows sum to 1).
+inline Vector lumped_mass(const Matrix& X, const Index_matrix& F) { return lumped_mass(face_areas(X, F), F, X.rows()); }
+
+/// Area-weighted face-to-vertex averaging M (n x m, rows sum to 1),
+/// M_ik = |T_k| / sum_{T_l > i} |T_l| for the corners i of T_k. Its pattern
+/// (column k: the three corners of face k, sorted) depends on the
+/// connectivity only, so it is built once and re-assembly writes the weights
+/// (the density-equalizing loops need M on every accepted map).
+class Face_to_vertex_assembler
+{
+public:
+  Face_to_vertex_assembler() = default;
+  Face_to_vertex_assembler(const Index_matrix& F, Eigen::Index n) { build(F, n); }
+
+  void build(const Index_matrix& F, Eigen::Index n)
+  {
+    m_rows = n;
+    m_corners.resize(static_cast<std::size_t>(3 * F.rows()));
+    for(Eigen::Index k = 0; k < F.rows(); ++k) {
+      int* corner = &m_corners[static_cast<std::size_t>(3 * k)];
+      for(int c = 0; c < 3; ++c) corner[c] = F(k, c);
+      std::sort(corner, corner + 3);
+    }
+  }
+
+  Sparse_matrix assemble(const Vector& face_area) const
+  {
+    const Eigen::Index m = face_area.size();
+    Vector total = Vector::Zero(m_rows);
+    for(Eigen::Index k = 0; k < m; ++k)
+      for(int c = 0; c < 3; ++c) total[m_corners[3 * k + c]] += face_area[k];
+    Sparse_matrix M(m_rows, m);
+    M.resizeNonZeros(3 * m);
+    int* outer = M.outerIndexPtr();
+    for(Eigen::Index k = 0; k <= m; ++k) outer[k] = int(3 * k);
+    std::copy(m_corners.begin(), m_corners.end(), M.innerIndexPtr());
+    double* v = M.valuePtr();
+    for(Eigen::Index k = 0; k < m; ++k)
+      for(int c = 0; c < 3; ++c) v[3 * k + c] = face_area[k] / total[m_corners[3 * k + c]];
+    return M;
+  }
+
+private:
+  Eigen::Index m_rows = 0;
+  std::vector<int> m_corners; // 3 k + c, c = 0, 1, 2: the corners of face k, sorted (column k of M)
+};
+
 inline Sparse_matrix face_to_vertex(const Vector& face_area, const Index_matrix& F, Eigen::Index n)
 {
-  Vector total = Vector::Zero(n);
-  for(Eigen::Index k = 0; k < F.rows(); ++k)
-    for(int c = 0; c < 3; ++c) total[F(k, c)] += face_area[k];
-  std::vector<Triplet> t;
-  t.reserve(static_cast<std::size_t>(3 * F.rows()));
-  for(Eigen::Index k = 0; k < F.rows(); ++k)
-    for(int c = 0; c < 3; ++c) t.emplace_back(F(k, c), int(k), face_area[k] / total[F(k, c)]);
-  Sparse_matrix M(n, F.rows());
-  M.setFromTriplets(t.begin(), t.end());
-  return M;
+  return Face_to_vertex_assembler(F, n).assemble(face_area);
 }
 
 /// Per-face gradient of a P1 function g on a surface (m x 3):
