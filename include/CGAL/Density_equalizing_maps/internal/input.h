@@ -49,6 +49,31 @@ std::unique_ptr<Spd_solver> solver_from_parameters(const NamedParameters& np)
   return make_spd_solver(choose_parameter<Traits>(get_parameter(np, internal_np::sparse_linear_solver)));
 }
 
+/// A simplicial LDL^T (CHOLMOD's when the package is built with it, else
+/// Eigen's), for systems refactored inside an iteration loop. On the 3,200
+/// unknowns of the TDEM test tori it costs the same CPU time as the supernodal
+/// factorization run on one thread, but starts no OpenMP threads: the
+/// supernodal one's (it asks for 4) spin-wait between regions and, on a
+/// loaded machine, stall its barriers.
+#ifdef CGAL_DEM_USE_CHOLMOD
+typedef CGAL::Eigen_solver_traits<Eigen::CholmodSimplicialLDLT<Sparse_matrix> > Simplicial_ldlt_traits;
+#else
+typedef CGAL::Eigen_solver_traits<Eigen::SimplicialLDLT<Sparse_matrix> > Simplicial_ldlt_traits;
+#endif
+
+/// The solver of the systems refactored inside an iteration loop (the
+/// toroidal Beltrami repairs): the user's `sparse_linear_solver` if one is
+/// given, else `Simplicial_ldlt_traits`.
+template <class NamedParameters>
+std::unique_ptr<Spd_solver> loop_solver_from_parameters(const NamedParameters& np)
+{
+  using CGAL::parameters::is_default_parameter;
+  if constexpr(is_default_parameter<NamedParameters, internal_np::sparse_linear_solver_t>::value)
+    return make_spd_solver(Simplicial_ldlt_traits());
+  else
+    return solver_from_parameters(np);
+}
+
 /// The solver of the engine's diffusion systems: by default warm-started
 /// preconditioned conjugate gradients (`Diffusion_pcg_solver`) whose lagged
 /// factorization is a simplicial LDL^T (rarely refactored but applied several
@@ -58,14 +83,8 @@ template <class NamedParameters>
 std::unique_ptr<Spd_solver> diffusion_solver_from_parameters(const NamedParameters& np)
 {
   using CGAL::parameters::is_default_parameter;
-  if constexpr(is_default_parameter<NamedParameters, internal_np::sparse_linear_solver_t>::value) {
-#ifdef CGAL_DEM_USE_CHOLMOD
-    typedef CGAL::Eigen_solver_traits<Eigen::CholmodSimplicialLDLT<Sparse_matrix> > Ldlt_traits;
-#else
-    typedef CGAL::Eigen_solver_traits<Eigen::SimplicialLDLT<Sparse_matrix> > Ldlt_traits;
-#endif
-    return std::unique_ptr<Spd_solver>(new Diffusion_pcg_solver(make_spd_solver(Ldlt_traits())));
-  }
+  if constexpr(is_default_parameter<NamedParameters, internal_np::sparse_linear_solver_t>::value)
+    return std::unique_ptr<Spd_solver>(new Diffusion_pcg_solver(make_spd_solver(Simplicial_ldlt_traits())));
   else
     return solver_from_parameters(np);
 }
