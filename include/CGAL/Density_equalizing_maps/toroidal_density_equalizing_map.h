@@ -176,7 +176,7 @@ Map_report toroidal_density_equalizing_map(const TriangleMesh& tm, VertexPointOu
   const int orientation = internal::layout_orientation(u, a.F, o, t, why);
   if(orientation == 0) throw Invalid_input(why);
   const auto repair_solver = internal::loop_solver_from_parameters(np);
-  const auto diffusion_solver = internal::diffusion_solver_from_parameters(np);
+  const auto diffusion_solver = internal::diffusion_solver_from_parameters(np, internal::toroidal_diffusion_tuning());
   const internal::Toroidal_run run = internal::run_toroidal_density_equalization(
     a.F, u, o, t, orientation, population, options, *repair_solver, diffusion_solver.get());
   Map_report report;
@@ -258,7 +258,7 @@ Map_report toroidal_parameterization(const TriangleMesh& tm, VertexPointOutMap t
     return report;
   }
   const auto repair_solver = internal::loop_solver_from_parameters(np);
-  const auto diffusion_solver = internal::diffusion_solver_from_parameters(np);
+  const auto diffusion_solver = internal::diffusion_solver_from_parameters(np, internal::toroidal_diffusion_tuning());
   const internal::Toroidal_run run = internal::run_toroidal_density_equalization(
     a.F, initial.u, initial.offsets, t, 1, population, options, *repair_solver, diffusion_solver.get());
   Map_report report;

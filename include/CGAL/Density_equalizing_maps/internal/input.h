@@ -78,13 +78,17 @@ std::unique_ptr<Spd_solver> loop_solver_from_parameters(const NamedParameters& n
 /// preconditioned conjugate gradients (`Diffusion_pcg_solver`) whose lagged
 /// factorization is a simplicial LDL^T (rarely refactored but applied several
 /// times per iteration, and simplicial triangular solves are the cheapest);
-/// the user's `sparse_linear_solver` if one is given.
+/// the user's `sparse_linear_solver` if one is given (then `tuning` is unused).
 template <class NamedParameters>
-std::unique_ptr<Spd_solver> diffusion_solver_from_parameters(const NamedParameters& np)
+std::unique_ptr<Spd_solver> diffusion_solver_from_parameters(
+  const NamedParameters& np, const Diffusion_pcg_solver::Tuning& tuning = Diffusion_pcg_solver::Tuning())
 {
   using CGAL::parameters::is_default_parameter;
-  if constexpr(is_default_parameter<NamedParameters, internal_np::sparse_linear_solver_t>::value)
-    return std::unique_ptr<Spd_solver>(new Diffusion_pcg_solver(make_spd_solver(Simplicial_ldlt_traits())));
+  if constexpr(is_default_parameter<NamedParameters, internal_np::sparse_linear_solver_t>::value) {
+    std::unique_ptr<Diffusion_pcg_solver> pcg(new Diffusion_pcg_solver(make_spd_solver(Simplicial_ldlt_traits())));
+    pcg->tune(tuning);
+    return pcg;
+  }
   else
     return solver_from_parameters(np);
 }

@@ -301,6 +301,21 @@ inline const Sparse_matrix& diffusion_matrix(Torus_domain& domain, const Matrix&
   return domain.diffusion_matrix(x, dt, A);
 }
 
+/// How the default diffusion solver treats TDEM's systems: the torus domain
+/// assembles them with a Face_block_assembler (exactly symmetric, so fused
+/// Jacobi steps apply); the density evolves smoothly between repairs
+/// (quadratic extrapolation: tdem_torus_5_1 21 -> 12 CG steps per solve);
+/// rough populations grade the mesh so strongly that Jacobi needs ~70 steps
+/// (tdem_torus_4) where the lagged factorization needs ~8.
+inline Diffusion_pcg_solver::Tuning toroidal_diffusion_tuning()
+{
+  Diffusion_pcg_solver::Tuning t;
+  t.fused_jacobi = true;
+  t.quadratic_extrapolation = true;
+  t.jacobi_step_limit = 40;
+  return t;
+}
+
 /// Outcome of a TDEM run on the flat torus.
 struct Toroidal_run
 {
