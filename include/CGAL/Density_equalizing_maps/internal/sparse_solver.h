@@ -224,8 +224,9 @@ public:
   {
     m_A = &A;
     if(A.rows() < m_jacobi_below && !m_jacobi_given_up) {
-      m_inverse_diagonal = A.diagonal().cwiseInverse();
-      return m_inverse_diagonal.allFinite() && (A.diagonal().array() > 0).all();
+      const Vector diagonal = A.diagonal(); // a search per column: extract it once
+      m_inverse_diagonal = diagonal.cwiseInverse();
+      return m_inverse_diagonal.allFinite() && (diagonal.array() > 0).all();
     }
     m_inverse_diagonal.resize(0);
     if(m_factored && m_rows == A.rows() && m_last_iterations <= m_refactor_iterations) return true;
