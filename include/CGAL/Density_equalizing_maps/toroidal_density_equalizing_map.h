@@ -148,10 +148,12 @@ inline void fill_toroidal_report(const Toroidal_run& run, const Torus_radii& t, 
 ///   \cgalParamNEnd
 ///   \cgalParamNBegin{sparse_linear_solver}
 ///     \cgalParamDescription{a model of `SparseLinearAlgebraWithFactorTraits_d` for the SPD systems}
-///     \cgalParamDefault{`Default_sparse_solver_traits` for the harmonic map, a simplicial
-///       \f$ LDL^T \f$ factorization (CHOLMOD's, or Eigen's without CHOLMOD) for the Beltrami repairs,
-///       which are refactored inside the loop, and for the diffusion steps the warm-started
-///       preconditioned conjugate gradients described in `spherical_density_equalizing_map()`.
+///     \cgalParamDefault{`Default_sparse_solver_traits` for the harmonic map, Eigen's simplicial
+///       \f$ LDL^T \f$ factorization (`Eigen::SimplicialLDLT`) for the Beltrami repairs, which are
+///       refactored inside the loop, and for the diffusion steps the warm-started
+///       preconditioned conjugate gradients described in `spherical_density_equalizing_map()`,
+///       here started from the quadratic extrapolation of the last three densities and
+///       switching from Jacobi to the lagged factorization on strongly graded meshes.
 ///       If given, this solver is used for every system.}
 ///   \cgalParamNEnd
 /// \cgalNamedParamsEnd
