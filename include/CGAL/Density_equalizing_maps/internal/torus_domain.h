@@ -140,27 +140,14 @@ public:
     return G;
   }
 
-  /// Chordal area of the image of each face on the torus (paper eq. 11).
+  /// Chordal area of the image of each face on the torus (paper eq. 11); the
+  /// images go to storage kept across iterations.
   Vector density_area(const Matrix& x) const
   {
-    const Eigen::Index n = x.rows(), m = m_F.rows();
-    m_torus_points.resize(n, 3);
-    for(Eigen::Index i = 0; i < n; ++i) {
-      const double cu = std::cos(x(i, 0) / m_radii.R), su = std::sin(x(i, 0) / m_radii.R);
-      const double cv = std::cos(x(i, 1) / m_radii.r), sv = std::sin(x(i, 1) / m_radii.r);
-      const double w = m_radii.R + m_radii.r * cv;
-      m_torus_points(i, 0) = w * cu;
-      m_torus_points(i, 1) = w * su;
-      m_torus_points(i, 2) = m_radii.r * sv;
-    }
-    Vector area(m);
-    for(Eigen::Index k = 0; k < m; ++k) {
-      const Eigen::Vector3d a = m_torus_points.row(m_F(k, 0)).transpose();
-      const Eigen::Vector3d b = m_torus_points.row(m_F(k, 1)).transpose();
-      const Eigen::Vector3d c = m_torus_points.row(m_F(k, 2)).transpose();
-      area[k] = 0.5 * (b - a).cross(c - a).norm();
-    }
-    return area;
+    m_torus_points.resize(x.rows(), 3);
+    for(Eigen::Index i = 0; i < x.rows(); ++i)
+      m_torus_points.row(i) = torus_point(x(i, 0), x(i, 1), m_radii.R, m_radii.r).transpose();
+    return face_areas(m_torus_points, m_F);
   }
 
   Matrix tangent_part(const Matrix&, const Matrix& v) const { return v; }
