@@ -148,9 +148,13 @@ inline void fill_toroidal_report(const Toroidal_run& run, const Torus_radii& t, 
 ///   \cgalParamNEnd
 ///   \cgalParamNBegin{sparse_linear_solver}
 ///     \cgalParamDescription{a model of `SparseLinearAlgebraWithFactorTraits_d` for the SPD systems}
-///     \cgalParamDefault{`Default_sparse_solver_traits` for the harmonic map and the Beltrami repairs, and
-///       for the diffusion steps the warm-started preconditioned conjugate gradients described in
-///       `spherical_density_equalizing_map()`. If given, this solver is used for every system.}
+///     \cgalParamDefault{`Default_sparse_solver_traits` for the harmonic map, Eigen's simplicial
+///       \f$ LDL^T \f$ factorization (`Eigen::SimplicialLDLT`) for the Beltrami repairs, which are
+///       refactored inside the loop, and for the diffusion steps the warm-started
+///       preconditioned conjugate gradients described in `spherical_density_equalizing_map()`,
+///       here started from the quadratic extrapolation of the last three densities and
+///       switching from Jacobi to the lagged factorization on strongly graded meshes.
+///       If given, this solver is used for every system.}
 ///   \cgalParamNEnd
 /// \cgalNamedParamsEnd
 ///
@@ -173,10 +177,10 @@ Map_report toroidal_density_equalizing_map(const TriangleMesh& tm, VertexPointOu
   std::string why;
   const int orientation = internal::layout_orientation(u, a.F, o, t, why);
   if(orientation == 0) throw Invalid_input(why);
-  const auto solver = internal::solver_from_parameters(np);
-  const auto diffusion_solver = internal::diffusion_solver_from_parameters(np);
+  const auto repair_solver = internal::loop_solver_from_parameters(np);
+  const auto diffusion_solver = internal::diffusion_solver_from_parameters(np, internal::toroidal_diffusion_tuning());
   const internal::Toroidal_run run = internal::run_toroidal_density_equalization(
-    a.F, u, o, t, orientation, population, options, *solver, diffusion_solver.get());
+    a.F, u, o, t, orientation, population, options, *repair_solver, diffusion_solver.get());
   Map_report report;
   internal::fill_toroidal_report(run, t, report);
   internal::write_toroidal_outputs(tm, a, run.u, run.offsets, t, torus_map, np);
@@ -255,9 +259,10 @@ Map_report toroidal_parameterization(const TriangleMesh& tm, VertexPointOutMap t
     report.radii = {t.R, t.r};
     return report;
   }
-  const auto diffusion_solver = internal::diffusion_solver_from_parameters(np);
+  const auto repair_solver = internal::loop_solver_from_parameters(np);
+  const auto diffusion_solver = internal::diffusion_solver_from_parameters(np, internal::toroidal_diffusion_tuning());
   const internal::Toroidal_run run = internal::run_toroidal_density_equalization(
-    a.F, initial.u, initial.offsets, t, 1, population, options, *solver, diffusion_solver.get());
+    a.F, initial.u, initial.offsets, t, 1, population, options, *repair_solver, diffusion_solver.get());
   Map_report report;
   internal::fill_toroidal_report(run, t, report);
   report.used_tutte_fallback = initial.used_uniform_weights;

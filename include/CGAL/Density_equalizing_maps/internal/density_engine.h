@@ -96,6 +96,15 @@ struct Density_flow
   void after_step(std::size_t, Matrix&, Domain&) {}
 };
 
+/// The diffusion matrix A + dt L of the implicit step on the assembler's
+/// pattern, from the domain's stiffness blocks. A domain that can fill it more
+/// cheaply (into storage it keeps) overloads this function.
+template <class Domain>
+Sparse_matrix diffusion_matrix(Domain& domain, const Matrix& x, double dt, const Vector& A)
+{
+  return domain.assembler().assemble(dt * domain.stiffness_blocks(x), &A);
+}
+
 /// Runs the loop on `x` (the initial map on the domain; on return the last
 /// accepted, fold-over-free map).
 template <class Domain, class Flow>
@@ -142,7 +151,7 @@ Engine_result run_density_equalization(Domain& domain, Flow& flow, Matrix& x, co
       v = known->vertex_gradient;
     } else {
       const Vector A = domain.mass(x);
-      const Sparse_matrix K = domain.assembler().assemble(dt * domain.stiffness_blocks(x), &A);
+      const Sparse_matrix& K = diffusion_matrix(domain, x, dt, A);
       Matrix rhs = A.cwiseProduct(rho), rho_plus_m;
       if(!solver.factor(K) || !solver.solve(rhs, rho_plus_m)) {
         res.termination = Termination::STALLED;

@@ -49,22 +49,45 @@ std::unique_ptr<Spd_solver> solver_from_parameters(const NamedParameters& np)
   return make_spd_solver(choose_parameter<Traits>(get_parameter(np, internal_np::sparse_linear_solver)));
 }
 
+/// The simplicial LDL^T of the diffusion solver's lagged factorization
+/// (CHOLMOD's when the package is built with it, else Eigen's).
+#ifdef CGAL_DEM_USE_CHOLMOD
+typedef CGAL::Eigen_solver_traits<Eigen::CholmodSimplicialLDLT<Sparse_matrix> > Simplicial_ldlt_traits;
+#else
+typedef CGAL::Eigen_solver_traits<Eigen::SimplicialLDLT<Sparse_matrix> > Simplicial_ldlt_traits;
+#endif
+
+/// The solver of the systems refactored inside an iteration loop (the
+/// toroidal Beltrami repairs): the user's `sparse_linear_solver` if one is
+/// given, else Eigen's simplicial LDL^T. Measured on the 3,200 unknowns of
+/// tdem_torus_4 (40 repairs): CHOLMOD's supernodal factorization costs the
+/// same CPU time as its simplicial one but starts OpenMP threads (it asks for
+/// 4) that spin-wait between regions and stall on a loaded machine; Eigen's
+/// factorization is cheaper still (0.39 -> 0.375 s CPU for the whole run).
+template <class NamedParameters>
+std::unique_ptr<Spd_solver> loop_solver_from_parameters(const NamedParameters& np)
+{
+  using CGAL::parameters::is_default_parameter;
+  if constexpr(is_default_parameter<NamedParameters, internal_np::sparse_linear_solver_t>::value)
+    return make_spd_solver(CGAL::Eigen_solver_traits<Eigen::SimplicialLDLT<Sparse_matrix> >());
+  else
+    return solver_from_parameters(np);
+}
+
 /// The solver of the engine's diffusion systems: by default warm-started
 /// preconditioned conjugate gradients (`Diffusion_pcg_solver`) whose lagged
 /// factorization is a simplicial LDL^T (rarely refactored but applied several
 /// times per iteration, and simplicial triangular solves are the cheapest);
-/// the user's `sparse_linear_solver` if one is given.
+/// the user's `sparse_linear_solver` if one is given (then `tuning` is unused).
 template <class NamedParameters>
-std::unique_ptr<Spd_solver> diffusion_solver_from_parameters(const NamedParameters& np)
+std::unique_ptr<Spd_solver> diffusion_solver_from_parameters(
+  const NamedParameters& np, const Diffusion_pcg_solver::Tuning& tuning = Diffusion_pcg_solver::Tuning())
 {
   using CGAL::parameters::is_default_parameter;
   if constexpr(is_default_parameter<NamedParameters, internal_np::sparse_linear_solver_t>::value) {
-#ifdef CGAL_DEM_USE_CHOLMOD
-    typedef CGAL::Eigen_solver_traits<Eigen::CholmodSimplicialLDLT<Sparse_matrix> > Ldlt_traits;
-#else
-    typedef CGAL::Eigen_solver_traits<Eigen::SimplicialLDLT<Sparse_matrix> > Ldlt_traits;
-#endif
-    return std::unique_ptr<Spd_solver>(new Diffusion_pcg_solver(make_spd_solver(Ldlt_traits())));
+    std::unique_ptr<Diffusion_pcg_solver> pcg(new Diffusion_pcg_solver(make_spd_solver(Simplicial_ldlt_traits())));
+    pcg->tune(tuning);
+    return pcg;
   }
   else
     return solver_from_parameters(np);

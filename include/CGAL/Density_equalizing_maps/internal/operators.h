@@ -154,19 +154,37 @@ public:
   /// blocks: m x 9, row-major local matrices; diagonal: optional extra n-vector.
   Sparse_matrix assemble(const Matrix& blocks, const Vector* diagonal = nullptr) const
   {
-    Sparse_matrix S = m_pattern;
+    Sparse_matrix S;
+    assemble(blocks, diagonal, S);
+    return S;
+  }
+
+  /// The same into S, whose storage is reused when it already has the
+  /// pattern (a loop that reassembles every iteration then allocates nothing).
+  void assemble(const Matrix& blocks, const Vector* diagonal, Sparse_matrix& S) const
+  {
+    if(!has_pattern(S)) S = m_pattern;
     double* v = S.valuePtr();
     std::fill(v, v + S.nonZeros(), 0.);
     for(Eigen::Index k = 0; k < blocks.rows(); ++k)
       for(int s = 0; s < 9; ++s) v[m_slot(k, s)] += blocks(k, s);
     if(diagonal)
       for(Eigen::Index i = 0; i < diagonal->size(); ++i) v[m_diag[i]] += (*diagonal)[i];
-    return S;
   }
 
   Eigen::Index size() const { return m_pattern.rows(); }
 
 private:
+  /// Same sizes and same (shared or equal) index arrays as the pattern.
+  bool has_pattern(const Sparse_matrix& S) const
+  {
+    const Eigen::Index nnz = m_pattern.nonZeros(), n = m_pattern.outerSize();
+    return S.rows() == m_pattern.rows() && S.cols() == m_pattern.cols() && S.isCompressed() &&
+           S.nonZeros() == nnz &&
+           std::equal(S.outerIndexPtr(), S.outerIndexPtr() + n + 1, m_pattern.outerIndexPtr()) &&
+           std::equal(S.innerIndexPtr(), S.innerIndexPtr() + nnz, m_pattern.innerIndexPtr());
+  }
+
   Eigen::Index slot(Eigen::Index r, Eigen::Index c) const
   {
     const int* inner = m_pattern.innerIndexPtr();

@@ -191,17 +191,42 @@ inline std::unique_ptr<Spd_solver> make_default_spd_solver()
 class Diffusion_pcg_solver : public Spd_solver
 {
 public:
+  /// Refinements of the behaviour above for one method's systems, all off by
+  /// default (they change the iterates by round-off or the preconditioner).
+  struct Tuning
+  {
+    /// The Jacobi steps in three fused passes over the unknowns (product with
+    /// its dot product; x, r, z with both reductions; p) instead of Eigen's
+    /// separate expressions and temporaries, the product gathering row i from
+    /// the stored column i. Needs an exactly symmetric matrix (a
+    /// Face_block_assembler's: entries (i,j) and (j,i) receive the same terms
+    /// in the same order).
+    bool fused_jacobi = false;
+    /// Start from the quadratic extrapolation of the last three solutions
+    /// (exact for densities that change quadratically in time, as they do
+    /// away from repairs).
+    bool quadratic_extrapolation = false;
+    /// Give up Jacobi for the lagged factorization for good once a Jacobi
+    /// solve needs more than this many steps (0: never): on strongly graded
+    /// meshes (cells whose mass is far below their stiffness) Jacobi needs
+    /// dozens of steps where the lagged factorization needs a few.
+    int jacobi_step_limit = 0;
+  };
+
   explicit Diffusion_pcg_solver(std::unique_ptr<Spd_solver> direct, Eigen::Index jacobi_below = 4000,
                                 double tolerance = 1e-8, int refactor_iterations = 12)
     : m_direct(std::move(direct)), m_jacobi_below(jacobi_below), m_tolerance(tolerance),
       m_refactor_iterations(refactor_iterations) {}
 
+  void tune(const Tuning& tuning) { m_tuning = tuning; }
+
   bool factor(const Sparse_matrix& A) override
   {
     m_A = &A;
-    if(A.rows() < m_jacobi_below) {
-      m_inverse_diagonal = A.diagonal().cwiseInverse();
-      return m_inverse_diagonal.allFinite() && (A.diagonal().array() > 0).all();
+    if(A.rows() < m_jacobi_below && !m_jacobi_given_up) {
+      const Vector diagonal = A.diagonal(); // a search per column: extract it once
+      m_inverse_diagonal = diagonal.cwiseInverse();
+      return m_inverse_diagonal.allFinite() && (diagonal.array() > 0).all();
     }
     m_inverse_diagonal.resize(0);
     if(m_factored && m_rows == A.rows() && m_last_iterations <= m_refactor_iterations) return true;
@@ -214,13 +239,20 @@ public:
   /// previous two solutions, and its cost decides the next refactorization.
   bool solve(const Matrix& B, Matrix& X) override
   {
+    auto known = [&B](const Matrix& Y) { return Y.rows() == B.rows() && Y.cols() == B.cols(); };
     Matrix guess = Matrix::Zero(B.rows(), B.cols());
-    if(m_last.rows() == B.rows() && m_last.cols() == B.cols())
-      guess = m_before_last.rows() == B.rows() && m_before_last.cols() == B.cols() ? Matrix(2 * m_last - m_before_last)
-                                                                                 : m_last;
+    if(m_tuning.quadratic_extrapolation && known(m_last) && known(m_before_last) && known(m_third_last))
+      guess = 3 * (m_last - m_before_last) + m_third_last;
+    else if(known(m_last))
+      guess = known(m_before_last) ? Matrix(2 * m_last - m_before_last) : m_last;
     int iterations = 0;
     if(!run(B, X, guess, iterations)) return false;
     m_last_iterations = iterations;
+    // judged on warm-started solves only: the first ones start far off
+    if(m_tuning.jacobi_step_limit > 0 && m_inverse_diagonal.size() == B.rows() && known(m_before_last) &&
+       iterations > m_tuning.jacobi_step_limit)
+      m_jacobi_given_up = true;
+    if(m_tuning.quadratic_extrapolation) m_third_last.swap(m_before_last);
     m_before_last.swap(m_last);
     m_last = X;
     return true;
@@ -236,8 +268,10 @@ public:
 
   std::unique_ptr<Spd_solver> clone() const override
   {
-    return std::unique_ptr<Spd_solver>(
+    std::unique_ptr<Diffusion_pcg_solver> copy(
       new Diffusion_pcg_solver(m_direct->clone(), m_jacobi_below, m_tolerance, m_refactor_iterations));
+    copy->tune(m_tuning);
+    return copy;
   }
 
 private:
@@ -245,9 +279,10 @@ private:
   {
     X.resize(B.rows(), B.cols());
     iterations = 0;
+    const bool fused = m_tuning.fused_jacobi && m_inverse_diagonal.size() == B.rows();
     for(Eigen::Index c = 0; c < B.cols(); ++c) {
       Vector x = guess.col(c);
-      const int k = preconditioned_cg(B.col(c), x);
+      const int k = fused ? fused_jacobi_cg(B.col(c), x) : preconditioned_cg(B.col(c), x);
       if(k < 0) return false;
       iterations = std::max(iterations, k);
       X.col(c) = x;
@@ -281,6 +316,58 @@ private:
     return -1;
   }
 
+  /// preconditioned_cg() with the Jacobi preconditioner in fused passes (Tuning::fused_jacobi).
+  int fused_jacobi_cg(const Vector& b, Vector& x)
+  {
+    const Sparse_matrix& A = *m_A;
+    const Eigen::Index n = A.rows();
+    const int* outer = A.outerIndexPtr();
+    const int* inner = A.innerIndexPtr();
+    const double* value = A.valuePtr();
+    const double* d = m_inverse_diagonal.data();
+    // row i of the symmetric A times v, from the stored column i
+    auto row_times = [&](Eigen::Index i, const double* v) {
+      double s = 0;
+      for(int q = outer[i]; q < outer[i + 1]; ++q) s += value[q] * v[inner[q]];
+      return s;
+    };
+    m_r.resize(n); m_z.resize(n); m_p.resize(n); m_Ap.resize(n);
+    double* r = m_r.data(); double* z = m_z.data(); double* p = m_p.data(); double* Ap = m_Ap.data();
+    double* xv = x.data();
+    const double stop_squared = m_tolerance * m_tolerance * b.squaredNorm();
+    double rr = 0, rz = 0;
+    for(Eigen::Index i = 0; i < n; ++i) {
+      r[i] = b[i] - row_times(i, xv);
+      z[i] = p[i] = d[i] * r[i];
+      rr += r[i] * r[i];
+      rz += r[i] * z[i];
+    }
+    if(rr <= stop_squared) return 0;
+    const int budget = std::max<int>(1000, static_cast<int>(n));
+    for(int k = 1; k <= budget; ++k) {
+      double pAp = 0;
+      for(Eigen::Index i = 0; i < n; ++i) {
+        Ap[i] = row_times(i, p);
+        pAp += p[i] * Ap[i];
+      }
+      const double alpha = rz / pAp;
+      double rz_new = 0;
+      rr = 0;
+      for(Eigen::Index i = 0; i < n; ++i) {
+        xv[i] += alpha * p[i];
+        r[i] -= alpha * Ap[i];
+        z[i] = d[i] * r[i];
+        rr += r[i] * r[i];
+        rz_new += r[i] * z[i];
+      }
+      if(rr <= stop_squared) return k;
+      const double beta = rz_new / rz;
+      for(Eigen::Index i = 0; i < n; ++i) p[i] = z[i] + beta * p[i];
+      rz = rz_new;
+    }
+    return -1;
+  }
+
   Vector precondition(const Vector& r)
   {
     if(m_inverse_diagonal.size() == r.size()) return m_inverse_diagonal.cwiseProduct(r);
@@ -293,12 +380,15 @@ private:
   Eigen::Index m_jacobi_below;
   double m_tolerance;
   int m_refactor_iterations;
+  Tuning m_tuning;
+  bool m_jacobi_given_up = false;
+  Vector m_r, m_z, m_p, m_Ap; // work vectors of fused_jacobi_cg()
   const Sparse_matrix* m_A = nullptr;
   Vector m_inverse_diagonal;
   bool m_factored = false;
   Eigen::Index m_rows = 0;
   int m_last_iterations = 0;
-  Matrix m_last, m_before_last;
+  Matrix m_last, m_before_last, m_third_last;
 };
 
 /// Dirichlet conditions by symmetric elimination that keeps the sparsity

@@ -21,7 +21,10 @@
 #include <CGAL/Density_equalizing_maps/internal/flat_torus.h>
 
 
+#include <algorithm>
+#include <cmath>
 #include <memory>
+#include <vector>
 
 namespace CGAL {
 namespace Density_equalizing_maps {
@@ -40,6 +43,7 @@ public:
       m_assembler(F, u0.rows()), m_repair_solver(std::move(repair_solver))
   {
     m_P0 = unrolled_layout(u0, F, offsets, radii);
+    build_face_to_vertex_pattern(u0.rows());
   }
 
   Eigen::Index dimension() const { return 2; }
@@ -61,42 +65,90 @@ public:
     return A;
   }
 
-  Matrix stiffness_blocks(const Matrix& x) const { return cotangent_stiffness_blocks(cached(x).P, m_Fu); }
-
-  /// Area-weighted averaging M (n x m), written straight into compressed
-  /// column storage: column k holds the three corners of face k.
-  Sparse_matrix face_to_vertex(const Matrix& x) const
+  /// Cotangent stiffness blocks of the layout, scaled by `scale`, written into
+  /// storage kept across iterations. The layout is planar: cot = dot / |cross|
+  /// straight from the edge vectors.
+  const Matrix& scaled_stiffness_blocks(const Matrix& x, double scale) const
   {
-    const Vector& a = cached(x).area;
-    const Eigen::Index n = x.rows(), m = m_F.rows();
-    Vector total = Vector::Zero(n);
-    for(Eigen::Index k = 0; k < m; ++k)
-      for(int c = 0; c < 3; ++c) total[m_F(k, c)] += a[k];
-    Sparse_matrix M(n, m);
-    M.resizeNonZeros(3 * m);
-    int* outer = M.outerIndexPtr();
-    int* inner = M.innerIndexPtr();
-    double* value = M.valuePtr();
+    const Layout_cache& c = cached(x);
+    const Eigen::Index m = m_F.rows();
+    m_blocks.resize(m, 9);
     for(Eigen::Index k = 0; k < m; ++k) {
-      int r[3] = {m_F(k, 0), m_F(k, 1), m_F(k, 2)};
-      std::sort(r, r + 3);
-      outer[k] = int(3 * k);
-      for(int c = 0; c < 3; ++c) {
-        inner[3 * k + c] = r[c];
-        value[3 * k + c] = a[k] / total[r[c]];
+      double e[3][2]; // e[a]: the edge opposite corner a, from corner a+1 to corner a+2
+      for(int a = 0; a < 3; ++a)
+        for(int d = 0; d < 2; ++d) e[a][d] = c.P(3 * k + (a + 2) % 3, d) - c.P(3 * k + (a + 1) % 3, d);
+      // half the cotangent of the angle at a, between e[a+2] = p_{a+1} - p_a and -e[a+1] = p_{a+2} - p_a
+      const double factor = -0.5 * scale / std::abs(c.twice_signed_area[k]);
+      double w[3];
+      for(int a = 0; a < 3; ++a) {
+        const double* f = e[(a + 1) % 3];
+        const double* g = e[(a + 2) % 3];
+        w[a] = factor * (f[0] * g[0] + f[1] * g[1]);
+      }
+      for(int a = 0; a < 3; ++a) {
+        const int b = (a + 1) % 3, d = (a + 2) % 3;
+        m_blocks(k, 3 * b + d) = m_blocks(k, 3 * d + b) = -w[a];
+        m_blocks(k, 4 * a) = w[b] + w[d];
       }
     }
-    outer[m] = int(3 * m);
-    return M;
+    return m_blocks;
+  }
+
+  Matrix stiffness_blocks(const Matrix& x) const { return scaled_stiffness_blocks(x, 1.); }
+
+  /// A + dt L assembled into storage kept across iterations.
+  const Sparse_matrix& diffusion_matrix(const Matrix& x, double dt, const Vector& A)
+  {
+    m_assembler.assemble(scaled_stiffness_blocks(x, dt), &A, m_diffusion_matrix);
+    return m_diffusion_matrix;
+  }
+
+  /// Area-weighted averaging M (n x m): the pattern (column k holds the three
+  /// corners of face k, sorted) is built once, only the weights change.
+  const Sparse_matrix& face_to_vertex(const Matrix& x) const
+  {
+    const Vector& a = cached(x).area;
+    const Eigen::Index m = m_F.rows();
+    m_total_area.setZero(m_face_to_vertex.rows());
+    for(Eigen::Index k = 0; k < m; ++k)
+      for(int c = 0; c < 3; ++c) m_total_area[m_F(k, c)] += a[k];
+    const int* row = m_face_to_vertex.innerIndexPtr();
+    double* weight = m_face_to_vertex.valuePtr();
+    for(Eigen::Index s = 0; s < 3 * m; ++s) weight[s] = a[s / 3] / m_total_area[row[s]];
+    return m_face_to_vertex;
   }
 
   Matrix face_gradient(const Matrix& x, const Vector& g) const
   {
-    return planar_face_gradient(cached(x).P, m_Fu, unrolled_values(g, m_F));
+    const Layout_cache& c = cached(x);
+    const Matrix& P = c.P;
+    const Eigen::Index m = m_F.rows();
+    Matrix G(m, 2);
+    for(Eigen::Index k = 0; k < m; ++k) {
+      // grad g = J (sum_a g_a e_a) / (2 signed area), e_a the edge opposite a, J e = (-e_y, e_x)
+      double sx = 0, sy = 0;
+      for(int a = 0; a < 3; ++a) {
+        const Eigen::Index from = 3 * k + (a + 1) % 3, to = 3 * k + (a + 2) % 3;
+        const double ga = g[m_F(k, a)];
+        sx += ga * (P(to, 0) - P(from, 0));
+        sy += ga * (P(to, 1) - P(from, 1));
+      }
+      const double twice_signed = c.twice_signed_area[k];
+      G(k, 0) = -sy / twice_signed;
+      G(k, 1) = sx / twice_signed;
+    }
+    return G;
   }
 
-  /// Chordal area of the image of each face on the torus (paper eq. 11).
-  Vector density_area(const Matrix& x) const { return face_areas(torus_images(x, m_radii), m_F); }
+  /// Chordal area of the image of each face on the torus (paper eq. 11); the
+  /// images go to storage kept across iterations.
+  Vector density_area(const Matrix& x) const
+  {
+    m_torus_points.resize(x.rows(), 3);
+    for(Eigen::Index i = 0; i < x.rows(); ++i)
+      m_torus_points.row(i) = torus_point(x(i, 0), x(i, 1), m_radii.R, m_radii.r).transpose();
+    return face_areas(m_torus_points, m_F);
+  }
 
   Matrix tangent_part(const Matrix&, const Matrix& v) const { return v; }
 
@@ -123,13 +175,13 @@ public:
       Matrix y = x + dt * d;
       std::size_t count = 0;
       std::vector<char> flagged = flagged_faces(y, count);
-      if(count == 0) { x_new = y; return true; }
+      if(count == 0) { x_new.swap(y); return true; }
       for(int solve = 0; solve < m_max_repair_solves && count > 0; ++solve) {
         if(!repair(y, flagged)) break;
         ++stats.repairs;
         flagged = flagged_faces(y, count);
       }
-      if(count == 0) { x_new = y; return true; }
+      if(count == 0) { x_new.swap(y); return true; }
       dt *= 0.5;
       ++stats.halvings;
     }
@@ -166,22 +218,58 @@ public:
 private:
   struct Layout_cache
   {
-    Matrix x, P;  // the state and its layout
-    Vector area;  // unsigned layout areas
+    Matrix x, P;              // the state and its layout
+    Vector twice_signed_area; // of the layout triangles
+    Vector area;              // unsigned layout areas
   };
   /// Layout and areas of x, recomputed only when x changes (the engine asks
-  /// for several operators on the same state).
+  /// for several operators on the same state), in place.
   const Layout_cache& cached(const Matrix& x) const
   {
-    if(m_cache.x.rows() != x.rows() || m_cache.x.cols() != x.cols() || m_cache.x != x) {
-      m_cache.x = x;
-      m_cache.P = unrolled_layout(x, m_F, m_offsets, m_radii);
-      m_cache.area = layout_signed_areas(m_cache.P).cwiseAbs();
+    Layout_cache& c = m_cache;
+    if(c.x.rows() == x.rows() && c.x.cols() == x.cols() && c.x == x) return c;
+    c.x = x;
+    const Eigen::Index m = m_F.rows();
+    const double pu = m_radii.period_u(), pv = m_radii.period_v();
+    c.P.resize(3 * m, 2);
+    c.twice_signed_area.resize(m);
+    c.area.resize(m);
+    for(Eigen::Index k = 0; k < m; ++k) {
+      for(int a = 0; a < 3; ++a) {
+        c.P(3 * k + a, 0) = x(m_F(k, a), 0) + pu * m_offsets(k, 2 * a);
+        c.P(3 * k + a, 1) = x(m_F(k, a), 1) + pv * m_offsets(k, 2 * a + 1);
+      }
+      const double ax = c.P(3 * k + 1, 0) - c.P(3 * k, 0), ay = c.P(3 * k + 1, 1) - c.P(3 * k, 1);
+      const double bx = c.P(3 * k + 2, 0) - c.P(3 * k, 0), by = c.P(3 * k + 2, 1) - c.P(3 * k, 1);
+      c.twice_signed_area[k] = ax * by - ay * bx;
+      c.area[k] = 0.5 * std::abs(c.twice_signed_area[k]);
     }
-    return m_cache;
+    return c;
+  }
+
+  void build_face_to_vertex_pattern(Eigen::Index n)
+  {
+    const Eigen::Index m = m_F.rows();
+    m_face_to_vertex.resize(n, m);
+    m_face_to_vertex.resizeNonZeros(3 * m);
+    int* outer = m_face_to_vertex.outerIndexPtr();
+    int* inner = m_face_to_vertex.innerIndexPtr();
+    for(Eigen::Index k = 0; k < m; ++k) {
+      outer[k] = int(3 * k);
+      int r[3] = {m_F(k, 0), m_F(k, 1), m_F(k, 2)};
+      std::sort(r, r + 3);
+      std::copy(r, r + 3, inner + 3 * k);
+    }
+    outer[m] = int(3 * m);
+    std::fill(m_face_to_vertex.valuePtr(), m_face_to_vertex.valuePtr() + 3 * m, 0.);
   }
 
   mutable Layout_cache m_cache;
+  // per-iteration storage, reused
+  mutable Matrix m_blocks, m_torus_points;
+  mutable Vector m_total_area;
+  mutable Sparse_matrix m_face_to_vertex;
+  Sparse_matrix m_diffusion_matrix;
   Index_matrix m_F, m_Fu;
   Offset_matrix m_offsets;
   Torus_radii m_radii;
@@ -194,6 +282,26 @@ private:
   double m_truncation = 0.9;
 };
 
+/// The engine's diffusion matrix, filled in the domain's own storage.
+inline const Sparse_matrix& diffusion_matrix(Torus_domain& domain, const Matrix& x, double dt, const Vector& A)
+{
+  return domain.diffusion_matrix(x, dt, A);
+}
+
+/// How the default diffusion solver treats TDEM's systems: the torus domain
+/// assembles them with a Face_block_assembler (exactly symmetric, so fused
+/// Jacobi steps apply); the density evolves smoothly between repairs
+/// (quadratic extrapolation: tdem_torus_5_1 21 -> 12 CG steps per solve);
+/// rough populations grade the mesh so strongly that Jacobi needs ~70 steps
+/// (tdem_torus_4) where the lagged factorization needs ~8.
+inline Diffusion_pcg_solver::Tuning toroidal_diffusion_tuning()
+{
+  Diffusion_pcg_solver::Tuning t;
+  t.fused_jacobi = true;
+  t.quadratic_extrapolation = true;
+  t.jacobi_step_limit = 40;
+  return t;
+}
 
 /// Outcome of a TDEM run on the flat torus.
 struct Toroidal_run
