@@ -189,10 +189,27 @@ void test_vertex_density()
   const DEM::Map_report ra = DEM::spherical_density_equalizing_map(m, a, P::vertex_density_map(rho));
   const DEM::Map_report rb = DEM::spherical_density_equalizing_map(m, b, P::face_population_map(pop));
   check_bijective_on_sphere(m, a, ra, "SDEM vertex_density_map");
-  double diff = 0;
-  for(vertex_descriptor v : vertices(m)) diff = std::max(diff, std::sqrt(CGAL::squared_distance(get(a, v), get(b, v))));
+  auto max_distance = [&](Point_map x, Point_map y) {
+    double d = 0;
+    for(vertex_descriptor v : vertices(m)) d = std::max(d, std::sqrt(CGAL::squared_distance(get(x, v), get(y, v))));
+    return d;
+  };
+  // The two populations agree to round-off only (the library and this test
+  // compute the face areas in different orders); 41 iterations with fold-over
+  // repairs amplify that to ~1e-9 on the unit sphere, by an amount that
+  // depends on the CPU's floating-point kernels. The bound sits far below what
+  // another reading of the density gives (the control below: its mean density
+  // without the area factor, a different population).
+  const double diff = max_distance(a, b);
   std::cout << "vertex_density_map vs equivalent face population: max distance " << diff << std::endl;
-  check(diff <= 1e-9, "SDEM: vertex_density_map gives the map of the equivalent face population");
+  check(diff <= 1e-6, "SDEM: vertex_density_map gives the map of the equivalent face population");
+  Face_values mean_density = m.add_property_map<face_descriptor, double>("f:mean_density", 0.).first;
+  for(face_descriptor f : faces(m)) put(mean_density, f, get(pop, f) / face_area(m, f));
+  Point_map c0 = output_map(m, "v:by_mean_density");
+  DEM::spherical_density_equalizing_map(m, c0, P::face_population_map(mean_density));
+  const double control = max_distance(a, c0);
+  std::cout << "vertex_density_map vs a population without the area factor: max distance " << control << std::endl;
+  check(control > 1e-3, "SDEM: another population gives a measurably different map (the bound above discriminates)");
   const DEM::Density_variance v0 = DEM::density_variance(m, m.points(), P::face_population_map(pop));
   const DEM::Density_variance v1 = DEM::density_variance(m, a, P::face_population_map(pop));
   std::cout << "vertex_density_map: Var(vertex density) " << v0.vertex << " -> " << v1.vertex << std::endl;
