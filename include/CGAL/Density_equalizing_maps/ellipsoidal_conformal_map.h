@@ -286,7 +286,9 @@ std::array<double, 3> optimal_ellipsoid_radii(const TriangleMesh& tm,
 /// harmonic map minimizing \f$\int|\nabla\Phi|^2 + \lambda\sum_k|\Phi(p_k) - \tilde q_k|^2\f$
 /// is computed with the north face pinned. If Φ folds, its Beltrami coefficient
 /// is smoothed and truncated and the map rebuilt by the Linear Beltrami Solver
-/// until it is fold-free (FLASH-style loop, at most 500 passes). The output is
+/// until it is fold-free (FLASH-style loop, at most 500 passes); the loop also
+/// runs, without the smoothing, while the composed map below still inverts a
+/// face on the ellipsoid (thin faces that ψ⁻¹ and the lift turn over). The output is
 /// \f$(P^N_{abc})^{-1} \circ \psi^{-1} \circ \Phi\f$. A larger `landmark_weight`
 /// brings the landmarks closer to their targets at the price of more
 /// conformal distortion. Frame, radii and dilation as for `ellipsoidal_conformal_map()`
