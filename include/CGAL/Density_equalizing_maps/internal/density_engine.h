@@ -105,6 +105,33 @@ Sparse_matrix diffusion_matrix(Domain& domain, const Matrix& x, double dt, const
   return domain.assembler().assemble(dt * domain.stiffness_blocks(x), &A);
 }
 
+/// The re-coupled density on the map x: the face-to-vertex averaging M and
+/// the vertex density rho = M (population / |T|), |T| the domain's density area.
+template <class Domain>
+void recoupled_density(const Domain& domain, const Matrix& x, const Vector& population, Sparse_matrix& M, Vector& rho)
+{
+  M = domain.face_to_vertex(x);
+  rho = densities(population, domain.density_area(x), M).vertex;
+}
+
+/// One implicit diffusion step (A + dt L) rho+ = A rho on the map x, and the
+/// vertex gradient M grad rho+ (the velocity is its quotient by -rho+). A
+/// `guess` makes it a side solve started there (see Spd_solver::solve).
+/// Returns false if the system could not be solved.
+template <class Domain>
+bool diffusion_step(Domain& domain, const Matrix& x, const Sparse_matrix& M, const Vector& rho, double dt,
+                    Spd_solver& solver, Vector& rho_plus, Matrix& vertex_gradient, const Vector* guess = nullptr)
+{
+  const Vector A = domain.mass(x);
+  const Sparse_matrix& K = diffusion_matrix(domain, x, dt, A);
+  Matrix rhs = A.cwiseProduct(rho), solution;
+  if(!solver.factor(K) || !(guess ? solver.solve(rhs, solution, Matrix(*guess)) : solver.solve(rhs, solution)))
+    return false;
+  rho_plus = solution.col(0);
+  vertex_gradient = M * domain.face_gradient(x, rho_plus);
+  return true;
+}
+
 /// Runs the loop on `x` (the initial map on the domain; on return the last
 /// accepted, fold-over-free map).
 template <class Domain, class Flow>
@@ -125,8 +152,7 @@ Engine_result run_density_equalization(Domain& domain, Flow& flow, Matrix& x, co
       M = known->face_to_vertex;
       rho = known->density;
     } else {
-      M = domain.face_to_vertex(x);
-      rho = densities(population, domain.density_area(x), M).vertex;
+      recoupled_density(domain, x, population, M, rho);
     }
   };
   recouple();
@@ -149,18 +175,11 @@ Engine_result run_density_equalization(Domain& domain, Flow& flow, Matrix& x, co
     if(const Map_diffusion* known = flow.diffusion_on(x)) {
       rho_plus = known->diffused;
       v = known->vertex_gradient;
-    } else {
-      const Vector A = domain.mass(x);
-      const Sparse_matrix& K = diffusion_matrix(domain, x, dt, A);
-      Matrix rhs = A.cwiseProduct(rho), rho_plus_m;
-      if(!solver.factor(K) || !solver.solve(rhs, rho_plus_m)) {
-        res.termination = Termination::STALLED;
-        res.message = "the diffusion system could not be solved";
-        x = x_previous;
-        break;
-      }
-      rho_plus = rho_plus_m.col(0);
-      v = M * domain.face_gradient(x, rho_plus);
+    } else if(!diffusion_step(domain, x, M, rho, dt, solver, rho_plus, v)) {
+      res.termination = Termination::STALLED;
+      res.message = "the diffusion system could not be solved";
+      x = x_previous;
+      break;
     }
     for(Eigen::Index i = 0; i < n; ++i) v.row(i) /= -rho_plus[i];
     Matrix d = domain.tangent_part(x, v);

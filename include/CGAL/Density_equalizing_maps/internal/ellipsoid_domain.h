@@ -166,16 +166,53 @@ inline std::vector<std::vector<Eigen::Index> > vertex_face_incidence(const Index
   return vf;
 }
 
+/// The operators the density-equalizing engine needs on a triangle mesh in
+/// R^3 (the map's own triangles): lumped mass, cotangent stiffness, area
+/// averaging, gradient, density area. The face areas of the last map asked
+/// about are kept: the engine (and EDEQ's energy) ask for several of these on
+/// the same map.
+class Surface_operators
+{
+public:
+  Surface_operators(const Index_matrix& F, Eigen::Index n) : m_F(F), m_assembler(F, n), m_averaging(F, n) {}
+
+  const Index_matrix& faces() const { return m_F; }
+  const Face_block_assembler& assembler() const { return m_assembler; }
+
+  Vector mass(const Matrix& x) const { return lumped_mass(areas(x), m_F, x.rows()); }
+  Matrix stiffness_blocks(const Matrix& x) const { return cotangent_stiffness_blocks(x, m_F); }
+  Sparse_matrix face_to_vertex(const Matrix& x) const { return m_averaging.assemble(areas(x)); }
+  Matrix face_gradient(const Matrix& x, const Vector& g) const { return internal::face_gradient(x, m_F, g); }
+  const Vector& density_area(const Matrix& x) const { return areas(x); }
+
+private:
+  const Vector& areas(const Matrix& x) const
+  {
+    if(m_area_map.rows() != x.rows() || m_area_map.cols() != x.cols() || m_area_map != x) {
+      m_area_map = x;
+      m_area = face_areas(x, m_F);
+    }
+    return m_area;
+  }
+
+  const Index_matrix& m_F;
+  Face_block_assembler m_assembler;
+  Face_to_vertex_assembler m_averaging;
+  mutable Matrix m_area_map; // the map whose face areas m_area holds
+  mutable Vector m_area;
+};
+
 /// Domain policy for the ellipsoid x^2/a^2 + y^2/b^2 + z^2/c^2 = 1 (the unit
-/// sphere when a = b = c = 1). Coordinates are 3D points on the domain.
-class Ellipsoid_domain
+/// sphere when a = b = c = 1). Coordinates are 3D points on the domain; the
+/// engine's operators are those of the map's triangles (Surface_operators).
+class Ellipsoid_domain : public Surface_operators
 {
 public:
   /// `initial` is the bijective starting map on this ellipsoid; it is the
   /// reference of the fold-over repair.
   Ellipsoid_domain(const Index_matrix& F, const Matrix& initial, const Eigen::Vector3d& radii, double truncation,
                    const Spd_solver& prototype)
-    : m_F(F), m_radii(radii), m_assembler(F, initial.rows()), m_averaging(F, initial.rows()),
+    : Surface_operators(F, initial.rows()), m_F(F), m_radii(radii),
       m_repair(F, to_unit_sphere(initial, radii), truncation, prototype),
       m_vertex_faces(vertex_face_incidence(F, initial.rows()))
   {
@@ -183,16 +220,8 @@ public:
   }
 
   Eigen::Index dimension() const { return 3; }
-  const Index_matrix& faces() const { return m_F; }
-  const Face_block_assembler& assembler() const { return m_assembler; }
   const Eigen::Vector3d& radii() const { return m_radii; }
   Eigen::Index pole_face() const { return m_pole; }
-
-  Vector mass(const Matrix& x) const { return lumped_mass(x, m_F); }
-  Matrix stiffness_blocks(const Matrix& x) const { return cotangent_stiffness_blocks(x, m_F); }
-  Sparse_matrix face_to_vertex(const Matrix& x) const { return m_averaging.assemble(face_areas(x, m_F)); }
-  Matrix face_gradient(const Matrix& x, const Vector& g) const { return internal::face_gradient(x, m_F, g); }
-  Vector density_area(const Matrix& x) const { return face_areas(x, m_F); }
 
   /// Removes the component along the outward normal (x/a^2, y/b^2, z/c^2).
   Matrix tangent_part(const Matrix& x, const Matrix& v) const
@@ -252,8 +281,6 @@ public:
 private:
   const Index_matrix& m_F;
   Eigen::Vector3d m_radii;
-  Face_block_assembler m_assembler;
-  Face_to_vertex_assembler m_averaging;
   Spherical_chart_repair m_repair;
   std::vector<std::vector<Eigen::Index> > m_vertex_faces;
   Eigen::Index m_pole = 0;

@@ -45,7 +45,8 @@ inline Vector face_areas(const Matrix& X, const Index_matrix& F)
   return A;
 }
 
-/// A subset of the faces with their source areas, and the vertices they use. Searches whose objective is a mean over faces (the Moebius area
+/// A subset of the faces with their source areas, and the vertices they use.
+/// Searches whose objective is a mean over faces (the Moebius area
 /// correction, the dilation of the ellipsoidal chart) run on such a sample and
 /// are polished or confirmed on all faces.
 struct Face_sample
@@ -271,22 +272,34 @@ public:
 
   Sparse_matrix assemble(const Vector& face_area) const
   {
-    const Eigen::Index m = face_area.size();
-    Vector total = Vector::Zero(m_rows);
-    for(Eigen::Index k = 0; k < m; ++k)
-      for(int c = 0; c < 3; ++c) total[m_corners[3 * k + c]] += face_area[k];
-    Sparse_matrix M(m_rows, m);
-    M.resizeNonZeros(3 * m);
-    int* outer = M.outerIndexPtr();
-    for(Eigen::Index k = 0; k <= m; ++k) outer[k] = int(3 * k);
-    std::copy(m_corners.begin(), m_corners.end(), M.innerIndexPtr());
-    double* v = M.valuePtr();
-    for(Eigen::Index k = 0; k < m; ++k)
-      for(int c = 0; c < 3; ++c) v[3 * k + c] = face_area[k] / total[m_corners[3 * k + c]];
+    Sparse_matrix M;
+    assemble(face_area, M);
     return M;
   }
 
+  /// The same into M, whose pattern is written only if it is not M's already
+  /// (a loop that reassembles every iteration then allocates nothing).
+  void assemble(const Vector& face_area, Sparse_matrix& M) const
+  {
+    const Eigen::Index m = face_area.size();
+    m_total.setZero(m_rows);
+    for(Eigen::Index k = 0; k < m; ++k)
+      for(int c = 0; c < 3; ++c) m_total[m_corners[3 * k + c]] += face_area[k];
+    if(M.rows() != m_rows || M.cols() != m || !M.isCompressed() || M.nonZeros() != 3 * m ||
+       !std::equal(m_corners.begin(), m_corners.end(), M.innerIndexPtr())) {
+      M.resize(m_rows, m);
+      M.resizeNonZeros(3 * m);
+      int* outer = M.outerIndexPtr();
+      for(Eigen::Index k = 0; k <= m; ++k) outer[k] = int(3 * k);
+      std::copy(m_corners.begin(), m_corners.end(), M.innerIndexPtr());
+    }
+    double* v = M.valuePtr();
+    for(Eigen::Index k = 0; k < m; ++k)
+      for(int c = 0; c < 3; ++c) v[3 * k + c] = face_area[k] / m_total[m_corners[3 * k + c]];
+  }
+
 private:
+  mutable Vector m_total; // per vertex, the area of its faces (work storage)
   Eigen::Index m_rows = 0;
   std::vector<int> m_corners; // 3 k + c, c = 0, 1, 2: the corners of face k, sorted (column k of M)
 };

@@ -26,8 +26,7 @@ struct Radii_search_flow
   // diffusion on the accepted maps (a smooth sequence) and, as side systems
   // started from the current solution, on the rescaled maps of the radius search
   std::unique_ptr<Spd_solver> solver;
-  Face_block_assembler assembler;
-  Face_to_vertex_assembler averaging;
+  Surface_operators operators; // the engine's, on the candidate maps
   Beltrami_magnitude_from_reference beltrami; // from r0, the starting map
   double energy_old = 0, energy_new = 0;
   std::size_t searches = 0;
@@ -38,7 +37,7 @@ struct Radii_search_flow
   Radii_search_flow(const Index_matrix& faces, const Vector& p, const Matrix& r0, double a, double dt,
                     const Spd_solver& prototype)
     : F(faces), population(p), alpha(a), time_step(dt), solver(prototype.clone()),
-      assembler(faces, r0.rows()), averaging(faces, r0.rows()), beltrami(r0, faces)
+      operators(faces, r0.rows()), beltrami(r0, faces)
   {}
 
   /// E(r) = E_density(r) + E_BC(r) (the reference code's discretization):
@@ -48,21 +47,13 @@ struct Radii_search_flow
   /// it rescales.
   double density_energy(const Matrix& r, Map_diffusion& d, const Vector* guess = nullptr)
   {
-    const Vector area = face_areas(r, F);
     d.map = r;
-    d.face_to_vertex = averaging.assemble(area);
-    d.density = d.face_to_vertex * population.cwiseQuotient(area);
-    const Vector A = lumped_mass(area, F, r.rows());
-    const Sparse_matrix K = assembler.assemble(time_step * cotangent_stiffness_blocks(r, F), &A);
-    Matrix rhs = A.cwiseProduct(d.density), solution;
-    const bool solved = solver->factor(K) && (guess ? solver->solve(rhs, solution, Matrix(*guess))
-                                                    : solver->solve(rhs, solution));
-    if(!solved) {
+    recoupled_density(operators, r, population, d.face_to_vertex, d.density);
+    if(!diffusion_step(operators, r, d.face_to_vertex, d.density, time_step, *solver, d.diffused, d.vertex_gradient,
+                       guess)) {
       d.map.resize(0, 3); // nothing to hand over to the engine
       return std::numeric_limits<double>::infinity();
     }
-    d.diffused = solution.col(0);
-    d.vertex_gradient = d.face_to_vertex * face_gradient(r, F, d.diffused);
     const double m = d.density.maxCoeff();
     return d.vertex_gradient.rowwise().squaredNorm().sum() / (m * m);
   }

@@ -43,7 +43,7 @@ public:
       m_assembler(F, u0.rows()), m_repair_solver(std::move(repair_solver))
   {
     m_P0 = unrolled_layout(u0, F, offsets, radii);
-    build_face_to_vertex_pattern(u0.rows());
+    m_averaging.build(F, u0.rows());
   }
 
   Eigen::Index dimension() const { return 2; }
@@ -107,14 +107,7 @@ public:
   /// corners of face k, sorted) is built once, only the weights change.
   const Sparse_matrix& face_to_vertex(const Matrix& x) const
   {
-    const Vector& a = cached(x).area;
-    const Eigen::Index m = m_F.rows();
-    m_total_area.setZero(m_face_to_vertex.rows());
-    for(Eigen::Index k = 0; k < m; ++k)
-      for(int c = 0; c < 3; ++c) m_total_area[m_F(k, c)] += a[k];
-    const int* row = m_face_to_vertex.innerIndexPtr();
-    double* weight = m_face_to_vertex.valuePtr();
-    for(Eigen::Index s = 0; s < 3 * m; ++s) weight[s] = a[s / 3] / m_total_area[row[s]];
+    m_averaging.assemble(cached(x).area, m_face_to_vertex);
     return m_face_to_vertex;
   }
 
@@ -247,27 +240,10 @@ private:
     return c;
   }
 
-  void build_face_to_vertex_pattern(Eigen::Index n)
-  {
-    const Eigen::Index m = m_F.rows();
-    m_face_to_vertex.resize(n, m);
-    m_face_to_vertex.resizeNonZeros(3 * m);
-    int* outer = m_face_to_vertex.outerIndexPtr();
-    int* inner = m_face_to_vertex.innerIndexPtr();
-    for(Eigen::Index k = 0; k < m; ++k) {
-      outer[k] = int(3 * k);
-      int r[3] = {m_F(k, 0), m_F(k, 1), m_F(k, 2)};
-      std::sort(r, r + 3);
-      std::copy(r, r + 3, inner + 3 * k);
-    }
-    outer[m] = int(3 * m);
-    std::fill(m_face_to_vertex.valuePtr(), m_face_to_vertex.valuePtr() + 3 * m, 0.);
-  }
-
   mutable Layout_cache m_cache;
   // per-iteration storage, reused
   mutable Matrix m_blocks, m_torus_points;
-  mutable Vector m_total_area;
+  Face_to_vertex_assembler m_averaging;
   mutable Sparse_matrix m_face_to_vertex;
   Sparse_matrix m_diffusion_matrix;
   Index_matrix m_F, m_Fu;
