@@ -30,6 +30,8 @@ def main():
     seed = int(sys.argv[5]) if len(sys.argv) > 5 else 3
     v = read_off_vertices(mesh)
     c = [sum(p[a] for p in v) / len(v) for a in range(3)]
+    if not 0 < k <= len(v):
+        raise SystemExit(f'{mesh}: cannot draw {k} landmarks from {len(v)} vertices')
     rng = random.Random(seed)
     chosen = sorted(rng.sample(range(len(v)), k))
     ca, sa = math.cos(angle), math.sin(angle)
