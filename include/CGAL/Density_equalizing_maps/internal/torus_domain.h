@@ -159,7 +159,7 @@ public:
   std::size_t fold_overs(const Matrix& x) const { return count_layout_fold_overs(layout(x), m_orientation); }
 
   /// x_new = x + dt d; if layout triangles flip, periodic LBS repair (at most
-  /// `max_repair_solves` solves, |mu| of flipped faces truncated to 0.9), else
+  /// `max_repair_solves` solves, |mu| truncated to 0.9, see repair()), else
   /// halve dt. Returns false if no fold-free step was found.
   template <class Statistics>
   bool advance(const Matrix& x, const Matrix& d, double dt, Matrix& x_new, Statistics& stats)
@@ -181,13 +181,19 @@ public:
     return false;
   }
 
-  /// One periodic LBS solve: mu = BC(initial layout -> layout of y), truncated
-  /// on flagged faces, one vertex on no flagged face pinned where it is.
+  /// One periodic LBS solve: mu = BC(initial layout -> layout of y), with
+  /// |mu| truncated to 0.9 on the flagged faces and on every face above 0.9,
+  /// one vertex on no flagged face pinned where it is. The reference truncates
+  /// only the flipped faces (|mu| > 1) and leaves the nearly flat ones
+  /// (0.9 < |mu| <= 1) as they are, and those flip on one of the next steps:
+  /// a repair that bounds every face, as the other LBS users of the package
+  /// do, costs the same solve and halves the repairs (tdem_torus_4: 42 -> 19,
+  /// with the same iteration count and final density; benchmark/RESULTS.md).
   bool repair(Matrix& y, const std::vector<char>& flagged)
   {
     Complex_vector mu = beltrami_coefficient(m_P0, layout(y), m_Fu);
     for(Eigen::Index k = 0; k < mu.size(); ++k)
-      if(flagged[k] || !(std::abs(mu[k]) < 1)) {
+      if(flagged[k] || !(std::abs(mu[k]) <= m_truncation)) {
         const double a = std::abs(mu[k]);
         mu[k] = a > 0 && std::isfinite(a) ? mu[k] * (m_truncation / a) : Complex(m_truncation, 0);
       }
@@ -269,7 +275,7 @@ inline const Sparse_matrix& diffusion_matrix(Torus_domain& domain, const Matrix&
 /// Jacobi steps apply); the density evolves smoothly between repairs
 /// (quadratic extrapolation: tdem_torus_5_1 21 -> 12 CG steps per solve);
 /// rough populations grade the mesh so strongly that Jacobi needs ~70 steps
-/// (tdem_torus_4) where the lagged factorization needs ~8.
+/// (tdem_torus_4) where the lagged factorization needs ~7.
 inline Diffusion_pcg_solver::Tuning toroidal_diffusion_tuning()
 {
   Diffusion_pcg_solver::Tuning t;
