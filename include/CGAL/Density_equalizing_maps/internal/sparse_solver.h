@@ -212,6 +212,9 @@ public:
     /// meshes (cells whose mass is far below their stiffness) Jacobi needs
     /// dozens of steps where the lagged factorization needs a few.
     int jacobi_step_limit = 0;
+    /// Refactor the lagged factorization once a solve needs more than this
+    /// many steps (0: the constructor's `refactor_iterations`).
+    int refactor_steps = 0;
   };
 
   explicit Diffusion_pcg_solver(std::unique_ptr<Spd_solver> direct, Eigen::Index jacobi_below = 4000,
@@ -219,7 +222,11 @@ public:
     : m_direct(std::move(direct)), m_jacobi_below(jacobi_below), m_tolerance(tolerance),
       m_refactor_iterations(refactor_iterations) {}
 
-  void tune(const Tuning& tuning) { m_tuning = tuning; }
+  void tune(const Tuning& tuning)
+  {
+    m_tuning = tuning;
+    if(tuning.refactor_steps > 0) m_refactor_iterations = tuning.refactor_steps;
+  }
 
   bool factor(const Sparse_matrix& A) override
   {
