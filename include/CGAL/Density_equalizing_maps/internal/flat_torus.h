@@ -174,10 +174,16 @@ inline std::size_t count_layout_fold_overs(const Matrix& P_unrolled, int expecte
 }
 
 /// 3D images phi(u_i) on the torus (n x 3); phi is periodic, so no offsets are needed.
+inline void torus_images(const Matrix& u, const Torus_radii& t, Matrix& Y)
+{
+  Y.resize(u.rows(), 3);
+  for(Eigen::Index i = 0; i < u.rows(); ++i) Y.row(i) = torus_point(u(i, 0), u(i, 1), t.R, t.r).transpose();
+}
+
 inline Matrix torus_images(const Matrix& u, const Torus_radii& t)
 {
-  Matrix Y(u.rows(), 3);
-  for(Eigen::Index i = 0; i < u.rows(); ++i) Y.row(i) = torus_point(u(i, 0), u(i, 1), t.R, t.r).transpose();
+  Matrix Y;
+  torus_images(u, t, Y);
   return Y;
 }
 

@@ -91,20 +91,6 @@ inline Vector signed_areas_2(const Matrix& X, const Index_matrix& F)
   return A;
 }
 
-/// Cotangent of the angle at each corner (m x 3), cot = dot / |cross|.
-inline Matrix corner_cotangents(const Matrix& X, const Index_matrix& F)
-{
-  Matrix C(F.rows(), 3);
-  for(Eigen::Index k = 0; k < F.rows(); ++k) {
-    const double twice_area = face_normal(X, F, k).norm();
-    for(int a = 0; a < 3; ++a) {
-      const Eigen::Vector3d p = row3(X, F(k, a)), q = row3(X, F(k, (a + 1) % 3)), r = row3(X, F(k, (a + 2) % 3));
-      C(k, a) = (q - p).dot(r - p) / twice_area;
-    }
-  }
-  return C;
-}
-
 /// Assembles per-face 3x3 blocks into a sparse n x n matrix whose sparsity
 /// pattern (all mesh edges plus the diagonal) is computed once. Re-assembly
 /// writes straight into the value array, so solvers can keep their symbolic
@@ -198,18 +184,47 @@ private:
   std::vector<Eigen::Index> m_diag;
 };
 
+/// Local cotangent stiffness blocks (m x 9) times `scale`, written into B
+/// (whose storage a loop that reassembles every iteration reuses):
+/// L_bc = -scale cot(a)/2, L_bb = scale (cot(a) + cot(c))/2, ...
+inline void cotangent_stiffness_blocks(const Matrix& X, const Index_matrix& F, double scale, Matrix& B)
+{
+  B.resize(F.rows(), 9);
+  const bool planar = X.cols() == 2; // planar charts and layouts: no third coordinate
+  for(Eigen::Index k = 0; k < F.rows(); ++k) {
+    double w[3]; // scale cot(a) / 2
+    if(planar) {
+      double e[3][2]; // e[a] = x_{a+1} - x_a
+      for(int a = 0; a < 3; ++a)
+        for(int d = 0; d < 2; ++d) e[a][d] = X(F(k, (a + 1) % 3), d) - X(F(k, a), d);
+      const double twice_area = std::abs(e[0][0] * (X(F(k, 2), 1) - X(F(k, 0), 1)) -
+                                         e[0][1] * (X(F(k, 2), 0) - X(F(k, 0), 0)));
+      const double factor = -0.5 * scale / twice_area; // one division per face: the planar loops are hot
+      for(int a = 0; a < 3; ++a) {
+        const double* q = e[a];           // x_{a+1} - x_a
+        const double* r = e[(a + 2) % 3]; // x_a - x_{a+2} = -(x_{a+2} - x_a)
+        w[a] = factor * (q[0] * r[0] + q[1] * r[1]);
+      }
+    } else {
+      const double twice_area = face_normal(X, F, k).norm();
+      for(int a = 0; a < 3; ++a) {
+        const Eigen::Vector3d p = row3(X, F(k, a)), q = row3(X, F(k, (a + 1) % 3)), r = row3(X, F(k, (a + 2) % 3));
+        w[a] = scale * (0.5 * ((q - p).dot(r - p) / twice_area));
+      }
+    }
+    for(int a = 0; a < 3; ++a) {
+      const int b = (a + 1) % 3, c = (a + 2) % 3;
+      B(k, 3 * b + c) = B(k, 3 * c + b) = -w[a];
+      B(k, 4 * a) = w[b] + w[c];
+    }
+  }
+}
+
 /// Local cotangent stiffness blocks (m x 9): L_bc -= cot(a)/2, L_bb += cot(a)/2, ...
 inline Matrix cotangent_stiffness_blocks(const Matrix& X, const Index_matrix& F)
 {
-  const Matrix C = corner_cotangents(X, F);
-  Matrix B = Matrix::Zero(F.rows(), 9);
-  for(Eigen::Index k = 0; k < F.rows(); ++k)
-    for(int a = 0; a < 3; ++a) {
-      const int b = (a + 1) % 3, c = (a + 2) % 3;
-      const double w = 0.5 * C(k, a);
-      B(k, 3 * b + c) -= w; B(k, 3 * c + b) -= w;
-      B(k, 3 * b + b) += w; B(k, 3 * c + c) += w;
-    }
+  Matrix B;
+  cotangent_stiffness_blocks(X, F, 1., B);
   return B;
 }
 
@@ -328,22 +343,33 @@ inline Matrix face_gradient(const Matrix& X, const Index_matrix& F, const Vector
 }
 
 /// Per-face gradient on a planar chart (m x 2), valid for either orientation.
-inline Matrix planar_face_gradient(const Matrix& X, const Index_matrix& F, const Vector& g)
+/// Corner a of face k sits at X(F(k, a)) and carries the value
+/// g[G(k, a)]: G = F for a chart of the mesh itself; a layout with its own
+/// corner points (the flat torus's unrolled faces) passes the mesh's faces as G.
+inline Matrix planar_face_gradient(const Matrix& X, const Index_matrix& F, const Index_matrix& value_faces,
+                                   const Vector& g)
 {
   Matrix G(F.rows(), 2);
   for(Eigen::Index k = 0; k < F.rows(); ++k) {
-    double gx = 0, gy = 0, twice_signed = 0;
+    // grad g = J (sum_a g_a e_a) / (2 signed area), e_a the edge opposite a, J e = (-e_y, e_x)
+    double sx = 0, sy = 0;
     for(int a = 0; a < 3; ++a) {
       const int j = F(k, (a + 1) % 3), l = F(k, (a + 2) % 3);
-      const double ex = X(l, 0) - X(j, 0), ey = X(l, 1) - X(j, 1);
-      gx += -g[F(k, a)] * ey; // J e = (-e_y, e_x)
-      gy += g[F(k, a)] * ex;
-      twice_signed += X(j, 0) * X(l, 1) - X(l, 0) * X(j, 1);
+      const double ga = g[value_faces(k, a)];
+      sx += ga * (X(l, 0) - X(j, 0));
+      sy += ga * (X(l, 1) - X(j, 1));
     }
-    G(k, 0) = gx / twice_signed;
-    G(k, 1) = gy / twice_signed;
+    const int i0 = F(k, 0), i1 = F(k, 1), i2 = F(k, 2);
+    const double twice_signed = (X(i1, 0) - X(i0, 0)) * (X(i2, 1) - X(i0, 1)) - (X(i1, 1) - X(i0, 1)) * (X(i2, 0) - X(i0, 0));
+    G(k, 0) = -sy / twice_signed;
+    G(k, 1) = sx / twice_signed;
   }
   return G;
+}
+
+inline Matrix planar_face_gradient(const Matrix& X, const Index_matrix& F, const Vector& g)
+{
+  return planar_face_gradient(X, F, F, g);
 }
 
 /// Index of the most regular face: argmin of sum |l_a / perimeter - 1/3| (lowest index on ties).

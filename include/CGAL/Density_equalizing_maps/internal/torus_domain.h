@@ -56,41 +56,13 @@ public:
   /// The layout of x with the domain's offsets (3m x 2, see flat_torus.h).
   const Matrix& layout(const Matrix& x) const { return cached(x).P; }
 
-  Vector mass(const Matrix& x) const
-  {
-    const Vector& a = cached(x).area;
-    Vector A = Vector::Zero(x.rows());
-    for(Eigen::Index k = 0; k < m_F.rows(); ++k)
-      for(int c = 0; c < 3; ++c) A[m_F(k, c)] += a[k] / 3.;
-    return A;
-  }
+  Vector mass(const Matrix& x) const { return lumped_mass(cached(x).area, m_F, x.rows()); }
 
-  /// Cotangent stiffness blocks of the layout, scaled by `scale`, written into
-  /// storage kept across iterations. The layout is planar: cot = dot / |cross|
-  /// straight from the edge vectors.
+  /// Cotangent stiffness blocks of the layout (planar: the unrolled faces),
+  /// scaled by `scale`, in storage kept across iterations.
   const Matrix& scaled_stiffness_blocks(const Matrix& x, double scale) const
   {
-    const Layout_cache& c = cached(x);
-    const Eigen::Index m = m_F.rows();
-    m_blocks.resize(m, 9);
-    for(Eigen::Index k = 0; k < m; ++k) {
-      double e[3][2]; // e[a]: the edge opposite corner a, from corner a+1 to corner a+2
-      for(int a = 0; a < 3; ++a)
-        for(int d = 0; d < 2; ++d) e[a][d] = c.P(3 * k + (a + 2) % 3, d) - c.P(3 * k + (a + 1) % 3, d);
-      // half the cotangent of the angle at a, between e[a+2] = p_{a+1} - p_a and -e[a+1] = p_{a+2} - p_a
-      const double factor = -0.5 * scale / std::abs(c.twice_signed_area[k]);
-      double w[3];
-      for(int a = 0; a < 3; ++a) {
-        const double* f = e[(a + 1) % 3];
-        const double* g = e[(a + 2) % 3];
-        w[a] = factor * (f[0] * g[0] + f[1] * g[1]);
-      }
-      for(int a = 0; a < 3; ++a) {
-        const int b = (a + 1) % 3, d = (a + 2) % 3;
-        m_blocks(k, 3 * b + d) = m_blocks(k, 3 * d + b) = -w[a];
-        m_blocks(k, 4 * a) = w[b] + w[d];
-      }
-    }
+    cotangent_stiffness_blocks(cached(x).P, m_Fu, scale, m_blocks);
     return m_blocks;
   }
 
@@ -111,35 +83,17 @@ public:
     return m_face_to_vertex;
   }
 
+  /// Gradient on the layout: corner points from the unrolled faces, values from the mesh's.
   Matrix face_gradient(const Matrix& x, const Vector& g) const
   {
-    const Layout_cache& c = cached(x);
-    const Matrix& P = c.P;
-    const Eigen::Index m = m_F.rows();
-    Matrix G(m, 2);
-    for(Eigen::Index k = 0; k < m; ++k) {
-      // grad g = J (sum_a g_a e_a) / (2 signed area), e_a the edge opposite a, J e = (-e_y, e_x)
-      double sx = 0, sy = 0;
-      for(int a = 0; a < 3; ++a) {
-        const Eigen::Index from = 3 * k + (a + 1) % 3, to = 3 * k + (a + 2) % 3;
-        const double ga = g[m_F(k, a)];
-        sx += ga * (P(to, 0) - P(from, 0));
-        sy += ga * (P(to, 1) - P(from, 1));
-      }
-      const double twice_signed = c.twice_signed_area[k];
-      G(k, 0) = -sy / twice_signed;
-      G(k, 1) = sx / twice_signed;
-    }
-    return G;
+    return planar_face_gradient(cached(x).P, m_Fu, m_F, g);
   }
 
   /// Chordal area of the image of each face on the torus (paper eq. 11); the
   /// images go to storage kept across iterations.
   Vector density_area(const Matrix& x) const
   {
-    m_torus_points.resize(x.rows(), 3);
-    for(Eigen::Index i = 0; i < x.rows(); ++i)
-      m_torus_points.row(i) = torus_point(x(i, 0), x(i, 1), m_radii.R, m_radii.r).transpose();
+    torus_images(x, m_radii, m_torus_points);
     return face_areas(m_torus_points, m_F);
   }
 
@@ -217,9 +171,8 @@ public:
 private:
   struct Layout_cache
   {
-    Matrix x, P;              // the state and its layout
-    Vector twice_signed_area; // of the layout triangles
-    Vector area;              // unsigned layout areas
+    Matrix x, P; // the state and its layout
+    Vector area; // unsigned layout areas
   };
   /// Layout and areas of x, recomputed only when x changes (the engine asks
   /// for several operators on the same state), in place.
@@ -231,7 +184,6 @@ private:
     const Eigen::Index m = m_F.rows();
     const double pu = m_radii.period_u(), pv = m_radii.period_v();
     c.P.resize(3 * m, 2);
-    c.twice_signed_area.resize(m);
     c.area.resize(m);
     for(Eigen::Index k = 0; k < m; ++k) {
       for(int a = 0; a < 3; ++a) {
@@ -240,8 +192,7 @@ private:
       }
       const double ax = c.P(3 * k + 1, 0) - c.P(3 * k, 0), ay = c.P(3 * k + 1, 1) - c.P(3 * k, 1);
       const double bx = c.P(3 * k + 2, 0) - c.P(3 * k, 0), by = c.P(3 * k + 2, 1) - c.P(3 * k, 1);
-      c.twice_signed_area[k] = ax * by - ay * bx;
-      c.area[k] = 0.5 * std::abs(c.twice_signed_area[k]);
+      c.area[k] = 0.5 * std::abs(ax * by - ay * bx);
     }
     return c;
   }
