@@ -310,10 +310,13 @@ private:
     const double stop = m_tolerance * b.norm();
     Vector& Ap = m_Ap;
     product(x, Ap);
-    Vector r = b - Ap;
+    Vector& r = m_r;
+    Vector& z = m_z;
+    r = b - Ap;
     if(r.norm() <= stop) return 0;
-    Vector z = precondition(r);
-    Vector p = z;
+    precondition(r, z);
+    Vector& p = m_p;
+    p = z;
     double rz = r.dot(z);
     const int budget = std::max<int>(1000, static_cast<int>(A.rows()));
     for(int k = 1; k <= budget; ++k) {
@@ -322,7 +325,7 @@ private:
       x += alpha * p;
       r -= alpha * Ap;
       if(r.norm() <= stop) return k;
-      z = precondition(r);
+      precondition(r, z);
       const double rz_new = r.dot(z);
       p = z + (rz_new / rz) * p;
       rz = rz_new;
@@ -382,12 +385,14 @@ private:
     return -1;
   }
 
-  Vector precondition(const Vector& r)
+  /// z = P^{-1} r. The lagged factorization's solve takes and fills n x 1
+  /// matrices: they are kept, so a CG step copies no vector.
+  void precondition(const Vector& r, Vector& z)
   {
-    if(m_inverse_diagonal.size() == r.size()) return m_inverse_diagonal.cwiseProduct(r);
-    Matrix z;
-    m_direct->solve(r, z);
-    return z.col(0);
+    if(m_inverse_diagonal.size() == r.size()) { z = m_inverse_diagonal.cwiseProduct(r); return; }
+    m_residual_column = r;
+    m_direct->solve(m_residual_column, m_preconditioned_column);
+    z = m_preconditioned_column.col(0);
   }
 
   std::unique_ptr<Spd_solver> m_direct;
@@ -396,7 +401,8 @@ private:
   int m_refactor_iterations;
   Tuning m_tuning;
   bool m_jacobi_given_up = false;
-  Vector m_r, m_z, m_p, m_Ap; // work vectors of fused_jacobi_cg()
+  Vector m_r, m_z, m_p, m_Ap; // work vectors of the CG loops
+  Matrix m_residual_column, m_preconditioned_column; // n x 1, for the lagged factorization's solve
   const Sparse_matrix* m_A = nullptr;
   Vector m_inverse_diagonal;
   bool m_factored = false;
