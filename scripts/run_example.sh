@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# "Command one": installs missing dependencies, builds (Release), then maps a
-# genus-0 mesh conformally onto the unit sphere with the Moebius area
-# correction and prints the metrics.
+# "Command one": installs missing build dependencies, builds (Release) the one
+# program it runs, the `dem` tool, then maps a genus-0 mesh conformally onto the
+# unit sphere with the Moebius area correction and prints the metrics.
 #   bash scripts/run_example.sh [MESH.off]
 # Mesh: the argument, else ../shared/data/maxplanck.off beside the repository,
 # else a bumpy icosphere written by scripts/make_sphere_mesh.sh.
@@ -11,7 +11,7 @@ ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 BUILD_DIR="${DEM_BUILD_DIR:-$ROOT/build}"
 export DEM_BUILD_DIR="$BUILD_DIR"
 
-bash "$ROOT/scripts/setup.sh"
+bash "$ROOT/scripts/setup.sh" dem
 
 OUT_DIR="$BUILD_DIR/example_output"
 mkdir -p "$OUT_DIR"

@@ -2,7 +2,7 @@
 # Installs the build dependencies (Debian/Ubuntu, apt-get) if any is missing,
 # then configures and builds the package into build/ (Release).
 #
-#   bash scripts/setup.sh            # deps + configure + build everything
+#   bash scripts/setup.sh            # deps + configure + build everything (all programs)
 #   bash scripts/setup.sh TARGET...  # deps + configure + build only these targets
 #   DEM_SKIP_DEPS=1 bash scripts/setup.sh   # do not touch the system packages
 #   DEM_BUILD_DIR=/tmp/b bash scripts/setup.sh  # other build directory
@@ -15,34 +15,10 @@ ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 BUILD_DIR="${DEM_BUILD_DIR:-$ROOT/build}"
 JOBS="${DEM_JOBS:-$(nproc 2>/dev/null || echo 2)}"
 
+# The build dependencies. The documentation tools (doxygen, libjs-mathjax) are
+# installed by scripts/build_docs.sh, which is the only command that needs them.
 PACKAGES=(libcgal-dev libeigen3-dev libboost-dev libgmp-dev libmpfr-dev
-          libsuitesparse-dev libopenblas0-serial cmake g++ ccache doxygen)
-
-install_missing_packages() {
-  if [[ "${DEM_SKIP_DEPS:-0}" == 1 ]]; then return 0; fi
-  if ! command -v dpkg >/dev/null 2>&1 || ! command -v apt-get >/dev/null 2>&1; then
-    echo "setup: not a Debian/Ubuntu system; install these yourself: ${PACKAGES[*]}" >&2
-    return 0
-  fi
-  local missing=() p
-  for p in "${PACKAGES[@]}"; do
-    # "install ok installed" is the only state where the package is usable
-    if ! dpkg -s "$p" 2>/dev/null | grep -q '^Status: install ok installed'; then
-      missing+=("$p")
-    fi
-  done
-  if (( ${#missing[@]} == 0 )); then return 0; fi
-  echo "setup: installing ${missing[*]}"
-  local sudo=()
-  if [[ "$(id -u)" != 0 ]]; then
-    if command -v sudo >/dev/null 2>&1; then sudo=(sudo); else
-      echo "setup: not root and no sudo; install these yourself: ${missing[*]}" >&2; exit 1
-    fi
-  fi
-  export DEBIAN_FRONTEND=noninteractive
-  "${sudo[@]}" apt-get update -qq
-  "${sudo[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
-}
+          libsuitesparse-dev libopenblas0-serial cmake g++ ccache)
 
 configure_and_build() {
   # Configure only once (or when the cache is gone): re-running cmake on an
@@ -55,5 +31,5 @@ configure_and_build() {
   cmake --build "$BUILD_DIR" -j"$JOBS" "${targets[@]}"
 }
 
-install_missing_packages
+bash "$ROOT/scripts/install_packages.sh" "${PACKAGES[@]}"
 configure_and_build "$@"

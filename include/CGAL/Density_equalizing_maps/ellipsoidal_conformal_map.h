@@ -86,6 +86,9 @@ void ellipsoid_setup_from_parameters(const TriangleMesh& tm, const NamedParamete
 ///
 /// \param tm a closed genus-0 triangle mesh
 /// \param np `vertex_point_map`, `vertex_index_map` as for `spherical_conformal_map()`
+/// \pre `tm` is a closed, connected, manifold triangle mesh of genus 0 without degenerate faces
+///      (checked: `Invalid_input` otherwise)
+/// \pre `tm` is not flat: its bounding box has a positive extent along each axis (checked)
 /// \throws Invalid_input if the mesh is invalid or flat
 /// \returns the radii (a, b, c), of mean 1
 template <class TriangleMesh, class NamedParameters = parameters::Default_named_parameters>
@@ -207,6 +210,10 @@ std::array<double, 3> bounding_box_ellipsoid_radii(const TriangleMesh& tm,
 ///   \cgalParamNEnd
 /// \cgalNamedParamsEnd
 ///
+/// \pre `tm` is a closed, connected, manifold triangle mesh of genus 0 without degenerate faces
+///      (checked: `Invalid_input` otherwise)
+/// \pre the radii given with `ellipsoid_radii`, if any, are positive and finite, and the pole
+///      vertices, if given, are distinct vertices of `tm` (checked)
 /// \returns a `Map_report` with `radii` = the radii used (or found), `fold_overs` = the exact count of
 /// faces not positively oriented about the ellipsoid's centre; with `optimize_radii`, `iterations`,
 /// `initial_error` and `final_error` (area distortion energies)
@@ -258,6 +265,8 @@ Map_report ellipsoidal_conformal_map(const TriangleMesh& tm, VertexPointOutMap e
 /// (same named parameters; the radii have mean 1).
 /// \param tm a closed genus-0 triangle mesh
 /// \param np the named parameters of `ellipsoidal_conformal_map()`
+/// \pre `tm` is a closed, connected, manifold triangle mesh of genus 0 without degenerate faces
+///      (checked: `Invalid_input` otherwise)
 /// \returns the optimized radii (a, b, c)
 template <class TriangleMesh, class NamedParameters = parameters::Default_named_parameters>
 std::array<double, 3> optimal_ellipsoid_radii(const TriangleMesh& tm,
@@ -321,6 +330,11 @@ std::array<double, 3> optimal_ellipsoid_radii(const TriangleMesh& tm,
 ///   \cgalParamNEnd
 /// \cgalNamedParamsEnd
 ///
+/// \pre `tm` is a closed, connected, manifold triangle mesh of genus 0 without degenerate faces
+///      (checked: `Invalid_input` otherwise)
+/// \pre `landmarks` is not empty, names distinct vertices of `tm`, and every target lies on the
+///      ellipsoid of the radii used (checked)
+/// \pre `landmark_weight` is positive and finite (checked)
 /// \returns a `Map_report` with `landmark_error` = the mean distance between mapped landmarks and their
 /// targets, `radii`, `iterations` = passes of the bijectivity loop, `termination` = `MAXIMUM_ITERATIONS`
 /// if the loop did not remove every planar fold, and `fold_overs` = the exact count on the output

@@ -147,6 +147,11 @@ Map_report ellipsoidal_density_equalization(const TriangleMesh& tm, VertexPointO
 /// \param initial_map receives the starting map (bijective, on the ellipsoid)
 /// \param np `ellipsoid_radii`, `face_population_map` or `vertex_density_map`, `vertex_point_map`,
 ///   `vertex_index_map`, `sparse_linear_solver`, as for `ellipsoidal_density_equalizing_map()`
+/// \pre `tm` is a closed, connected, manifold triangle mesh of genus 0 without degenerate faces
+///      (checked: `Invalid_input` otherwise)
+/// \pre the population (`face_population_map`) or density (`vertex_density_map`), when given, is
+///      positive and finite on every face or vertex (checked)
+/// \pre the radii, if given, are positive and finite (checked)
 /// \returns a `Map_report` whose `message` says which map was chosen, with the radii and the exact fold-over
 ///   count (0)
 /// \throws Invalid_input on an invalid mesh, population or radii; nothing is written then.
@@ -211,6 +216,11 @@ Map_report ellipsoidal_density_equalizing_initial_map(const TriangleMesh& tm, Ve
 ///     \cgalParamDefault{300}
 ///   \cgalParamNEnd
 /// \cgalNamedParamsEnd
+/// \pre `tm` is a closed, connected, manifold triangle mesh of genus 0 without degenerate faces
+///      (checked: `Invalid_input` otherwise)
+/// \pre the population (`face_population_map`) or density (`vertex_density_map`), when given, is
+///      positive and finite on every face or vertex (checked)
+/// \pre the radii, if given, are positive and finite (checked)
 /// \returns a `Map_report` with the radii used
 /// \throws Invalid_input on an invalid mesh, population, radii or parameter; nothing is written then.
 template <class TriangleMesh, class VertexPointOutMap,
@@ -248,6 +258,12 @@ Map_report ellipsoidal_density_equalizing_map(const TriangleMesh& tm, VertexPoin
 ///     \cgalParamDefault{1e-5}
 ///   \cgalParamNEnd
 /// \cgalNamedParamsEnd
+/// \pre `tm` is a closed, connected, manifold triangle mesh of genus 0 without degenerate faces
+///      (checked: `Invalid_input` otherwise)
+/// \pre the population (`face_population_map`) or density (`vertex_density_map`), when given, is
+///      positive and finite on every face or vertex (checked)
+/// \pre the initial radii, if given, are positive and finite, and `beltrami_weight` is non-negative
+///      (checked)
 /// \returns a `Map_report` with the final radii and the exact fold-over count of the output
 template <class TriangleMesh, class VertexPointOutMap,
           class NamedParameters = parameters::Default_named_parameters>

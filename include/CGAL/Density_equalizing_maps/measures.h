@@ -137,6 +137,9 @@ void write_face_values(const Mesh_arrays<TriangleMesh>& a, const Vector& v, Face
 ///   \cgalParamNEnd
 /// \cgalNamedParamsEnd
 ///
+/// \pre every face of `tm` is a triangle (checked: `Invalid_input` otherwise)
+/// \pre for the count to mean inverted faces, `tm` is closed and oriented outward and the domain of
+///      `mapped` is star-shaped about `center`
 /// \returns the number of inverted faces (0 for a bijective map)
 /// \throws Invalid_input if a face is not a triangle
 template <class TriangleMesh, class MappedPointMap, class NamedParameters = parameters::Default_named_parameters>
@@ -172,6 +175,8 @@ std::size_t number_of_fold_overs(const TriangleMesh& tm, MappedPointMap mapped,
 /// \param uv the planar image of every vertex
 /// \param np optional named parameters: `vertex_index_map` as for `number_of_fold_overs()`
 ///
+/// \pre every face of `tm` is a triangle (checked: `Invalid_input` otherwise)
+/// \pre for the count to mean inverted faces, the faces of `tm` are consistently oriented
 /// \returns the number of faces whose image is clockwise or degenerate
 /// \throws Invalid_input if a face is not a triangle
 template <class TriangleMesh, class PlanarPointMap, class NamedParameters = parameters::Default_named_parameters>
@@ -206,6 +211,8 @@ std::size_t number_of_planar_fold_overs(const TriangleMesh& tm, PlanarPointMap u
 /// \param mu_out receives `|mu|` of every face
 /// \param np optional named parameters: `vertex_point_map` (input positions) and
 ///        `vertex_index_map` as for `number_of_fold_overs()`
+/// \pre every face of `tm` is a triangle (checked: `Invalid_input` otherwise)
+/// \pre no face of `tm` is degenerate
 /// \throws Invalid_input if a face is not a triangle
 template <class TriangleMesh, class MappedPointMap, class FaceValueMap,
           class NamedParameters = parameters::Default_named_parameters>
@@ -233,6 +240,8 @@ void beltrami_coefficient_magnitudes(const TriangleMesh& tm, MappedPointMap mapp
 /// \param darea_out receives `d_area` of every face
 /// \param np optional named parameters: `vertex_point_map` (input positions) and
 ///        `vertex_index_map` as for `number_of_fold_overs()`
+/// \pre every face of `tm` is a triangle (checked: `Invalid_input` otherwise)
+/// \pre no face of `tm` is degenerate
 /// \throws Invalid_input if a face is not a triangle
 template <class TriangleMesh, class MappedPointMap, class FaceValueMap,
           class NamedParameters = parameters::Default_named_parameters>
@@ -283,6 +292,9 @@ void log_area_ratios(const TriangleMesh& tm, MappedPointMap mapped, FaceValueMap
 ///   \cgalParamNEnd
 /// \cgalNamedParamsEnd
 ///
+/// \pre every face of `tm` is a triangle (checked: `Invalid_input` otherwise)
+/// \pre no face of `tm` is degenerate
+/// \pre the population, when given, is positive and finite (checked)
 /// \throws Invalid_input if a face is not a triangle or the population is not positive and finite
 /// \returns the variances of the normalized vertex and face densities
 template <class TriangleMesh, class MappedPointMap, class NamedParameters = parameters::Default_named_parameters>
@@ -311,6 +323,8 @@ Density_variance density_variance(const TriangleMesh& tm, MappedPointMap mapped,
 /// \param mapped the image of every vertex
 /// \param np optional named parameters: `vertex_point_map` (input positions) and
 ///        `vertex_index_map` as for `number_of_fold_overs()`
+/// \pre every face of `tm` is a triangle (checked: `Invalid_input` otherwise)
+/// \pre no face of `tm` is degenerate
 /// \throws Invalid_input if a face is not a triangle
 /// \returns the means and standard deviations of `|mu|` and `|d_area|` over the faces
 template <class TriangleMesh, class MappedPointMap, class NamedParameters = parameters::Default_named_parameters>

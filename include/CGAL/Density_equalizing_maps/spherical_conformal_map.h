@@ -51,6 +51,8 @@ namespace Density_equalizing_maps {
 ///   \cgalParamNEnd
 /// \cgalNamedParamsEnd
 ///
+/// \pre `tm` is a closed, connected, manifold triangle mesh of genus 0 without degenerate faces
+///      (checked: `Invalid_input` otherwise)
 /// \returns a `Map_report` whose `fold_overs` is the exact count of inverted faces
 /// \throws Invalid_input if the mesh is not a valid genus-0 closed surface; nothing is written then.
 template <class TriangleMesh, class VertexPointOutMap,
@@ -81,6 +83,11 @@ Map_report spherical_conformal_map(const TriangleMesh& tm, VertexPointOutMap sph
 /// \param sphere_map the spherical map to correct (readable vertex point map)
 /// \param corrected_map receives the corrected map (may be the same map as `sphere_map`)
 /// \param np `vertex_point_map`, `vertex_index_map` as for `spherical_conformal_map()`
+/// \pre `tm` is a closed, connected, manifold triangle mesh of genus 0 without degenerate faces
+///      (checked: `Invalid_input` otherwise)
+/// \pre `sphere_map` gives every vertex a finite point of the unit sphere and is fold-over free, as
+///      the output of `spherical_conformal_map()` is (non-finite coordinates are rejected with
+///      `Invalid_input`)
 /// \returns a `Map_report` with the fold-over count of the output
 template <class TriangleMesh, class VertexPointMap, class VertexPointOutMap,
           class NamedParameters = parameters::Default_named_parameters>

@@ -111,6 +111,11 @@ Matrix initial_spherical_map(const Mesh_arrays<TriangleMesh>& a, const NamedPara
 ///   \cgalParamNEnd
 /// \cgalNamedParamsEnd
 ///
+/// \pre `tm` is a closed, connected, manifold triangle mesh of genus 0 without degenerate faces
+///      (checked: `Invalid_input` otherwise)
+/// \pre the population (`face_population_map`) or density (`vertex_density_map`), when given, is
+///      positive and finite on every face or vertex (checked)
+/// \pre `initial_map`, when given, is a fold-over-free map of `tm` onto the unit sphere (checked)
 /// \returns a `Map_report` (iterations, termination, final sd/mean, fold-overs = 0 unless stalled from the start)
 /// \throws Invalid_input on an invalid mesh, population or parameter; nothing is written then.
 template <class TriangleMesh, class VertexPointOutMap,
@@ -181,6 +186,12 @@ Map_report spherical_density_equalizing_map(const TriangleMesh& tm, VertexPointO
 ///     \cgalParamDefault{0.01}
 ///   \cgalParamNEnd
 /// \cgalNamedParamsEnd
+/// \pre `tm` is a closed, connected, manifold triangle mesh of genus 0 without degenerate faces
+///      (checked: `Invalid_input` otherwise)
+/// \pre `landmarks` is not empty, names vertices of `tm`, and every target is a point of
+///      the unit sphere (checked)
+/// \pre the weights `density_weight`, `harmonic_weight` and `landmark_weight` are non-negative
+///      (checked)
 /// \returns a `Map_report` with `landmark_error` = mean distance between mapped landmarks and targets
 template <class TriangleMesh, class Landmarks, class VertexPointOutMap,
           class NamedParameters = parameters::Default_named_parameters>

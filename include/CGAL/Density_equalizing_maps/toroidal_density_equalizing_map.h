@@ -161,6 +161,12 @@ inline void fill_toroidal_report(const Toroidal_run& run, const Torus_radii& t, 
 ///   \cgalParamNEnd
 /// \cgalNamedParamsEnd
 ///
+/// \pre `tm` is a closed, connected, manifold triangle mesh of genus 1 without degenerate faces
+///      (checked: `Invalid_input` otherwise)
+/// \pre the vertices of `tm` lie on the torus of revolution of the radii `R > r > 0` given with
+///      `torus_radii` (checked up to a tolerance)
+/// \pre the population (`face_population_map`) or density (`vertex_density_map`), when given, is
+///      positive and finite on every face or vertex (checked)
 /// \returns a `Map_report`: `iterations`, `termination`, `initial_error` and `final_error`
 ///   (sd/mean of the re-coupled vertex density), `repairs` and `step_halvings`,
 ///   `fold_overs` (exact count of faces inverted in the flat-torus layout) and `radii` = {R, r}
@@ -219,6 +225,10 @@ Map_report toroidal_density_equalizing_map(const TriangleMesh& tm, VertexPointOu
 /// \cgalNamedParamsEnd
 /// `face_population_map` defaults to the face areas of the input, which makes the map area-preserving.
 ///
+/// \pre `tm` is a closed, connected, manifold triangle mesh of genus 1 without degenerate faces
+///      (checked: `Invalid_input` otherwise)
+/// \pre the radii satisfy `R > r > 0`, and the cut edges, when given, are edges of `tm` that form
+///      two generating loops (checked)
 /// \returns a `Map_report` as for `toroidal_density_equalizing_map()`; `used_tutte_fallback`
 ///   tells whether the initial harmonic map needed uniform weights
 /// \throws Invalid_input if the mesh is not a valid closed genus-one surface, if the radii, the
