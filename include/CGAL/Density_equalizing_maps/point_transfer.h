@@ -222,7 +222,8 @@ public:
     return to_point(m_surface.surface_point(to_surface_point(loc)));
   }
 
-  /// The validated mesh and map on index arrays (used by the applications).
+  // The validated mesh and map on index arrays (used by the applications; internal
+  // type, so not part of the documented interface).
   const internal::Mapped_surface& mapped_surface() const { return m_surface; }
 
 private:
