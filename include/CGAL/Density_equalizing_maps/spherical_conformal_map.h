@@ -53,6 +53,8 @@ namespace Density_equalizing_maps {
 ///
 /// \returns a `Map_report` whose `fold_overs` is the exact count of inverted faces
 /// \throws Invalid_input if the mesh is not a valid genus-0 closed surface; nothing is written then.
+/// \throws Algorithm_failure if neither the harmonic map nor the Tutte embedding could be computed (linear
+///   solver failure or non-finite result); nothing is written then.
 template <class TriangleMesh, class VertexPointOutMap,
           class NamedParameters = parameters::Default_named_parameters>
 Map_report spherical_conformal_map(const TriangleMesh& tm, VertexPointOutMap sphere_map,
@@ -81,7 +83,12 @@ Map_report spherical_conformal_map(const TriangleMesh& tm, VertexPointOutMap sph
 /// \param sphere_map the spherical map to correct (readable vertex point map)
 /// \param corrected_map receives the corrected map (may be the same map as `sphere_map`)
 /// \param np `vertex_point_map`, `vertex_index_map` as for `spherical_conformal_map()`
+/// \pre `sphere_map` is a bijective map onto the sphere centred at the origin (points off the unit sphere
+///   are projected radially onto it)
 /// \returns a `Map_report` with the fold-over count of the output
+/// \throws Invalid_input if the mesh is not a valid genus-0 closed surface, or `sphere_map` has a
+///   non-finite point, a point at the center, or an inverted face (exact count, after the radial
+///   projection); nothing is written then.
 template <class TriangleMesh, class VertexPointMap, class VertexPointOutMap,
           class NamedParameters = parameters::Default_named_parameters>
 Map_report mobius_area_correction(const TriangleMesh& tm, VertexPointMap sphere_map, VertexPointOutMap corrected_map,
@@ -89,8 +96,11 @@ Map_report mobius_area_correction(const TriangleMesh& tm, VertexPointMap sphere_
 {
   const auto a = internal::closed_surface_arrays(tm, np, 2);
   internal::Matrix S = internal::read_points(a, sphere_map);
-  if(!S.allFinite()) throw Invalid_input("the spherical map has non-finite coordinates");
+  internal::validate_spherical_points(S, "the spherical map");
   internal::normalize_rows(S);
+  const std::size_t folds = internal::count_inverted_faces_about_center(S, a.F);
+  if(folds > 0)
+    throw Invalid_input("the spherical map is not bijective: " + std::to_string(folds) + " fold-overs (exact count)");
   const internal::Matrix Q = internal::mobius_area_correction(a.X, a.F, S);
   Map_report report;
   report.fold_overs = internal::count_inverted_faces_about_center(Q, a.F);
