@@ -3,15 +3,15 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
 // Reading the dem tool's input mesh as a polygon soup: CGAL reads it; if it
-// cannot, the file is scanned for the cause (dem_mesh_diagnosis.h); with
-// --repair the soup goes through dem_soup_repair.h first. Errors are thrown
+// cannot, the file is scanned for the cause (mesh_diagnosis.h); with
+// --repair the soup goes through soup_repair.h first. Errors are thrown
 // as Invalid_input (exit 3).
 
 #ifndef DEM_TOOL_MESH_INPUT_H
 #define DEM_TOOL_MESH_INPUT_H
 
-#include "dem_mesh_diagnosis.h"
-#include "dem_soup_repair.h"
+#include "mesh_diagnosis.h"
+#include "soup_repair.h"
 
 #include <CGAL/Density_equalizing_maps/Map_report.h>
 #include <CGAL/IO/polygon_soup_io.h>
@@ -58,6 +58,13 @@ void read_input_soup(const std::string& path, std::vector<Point>& points,
     for(std::size_t v : polygons[k])
       if(v >= points.size())
         refuse("face " + std::to_string(k) + ": vertex index " + std::to_string(v) + " out of range");
+  // the STL reader merges equal corners, and a NaN corner can vanish in the
+  // merge: scan STL files even when they were read
+  if(std::filesystem::path(path).extension().string() == ".stl" ||
+     std::filesystem::path(path).extension().string() == ".STL") {
+    const std::string cause = diagnose_mesh_file(path);
+    if(!cause.empty()) throw Invalid_input("cannot read a mesh from " + path + ": " + cause);
+  }
   for(std::size_t i = 0; i < points.size(); ++i)
     if(!std::isfinite(CGAL::to_double(points[i].x())) || !std::isfinite(CGAL::to_double(points[i].y())) ||
        !std::isfinite(CGAL::to_double(points[i].z())))

@@ -81,36 +81,49 @@ inline std::string make_temporary_beside(const std::string& path, std::string& e
   return std::string(buffer.data());
 }
 
-/// Everything that can be known about an output path before the computation.
-/// Returns "" if it can be written, else the problem. `inputs` are the files
-/// the run reads: an output must be none of them.
-inline std::string output_path_problem(const std::string& option, const std::string& path, bool mesh,
-                                       const std::vector<std::string>& inputs)
+/// A problem with an output path, and the exit status it deserves: 2 for a
+/// command-line mistake (unsupported format, an output that is an input), 3
+/// for a place that cannot be written (DESIGN.md: unwritable file = exit 3).
+struct Output_problem
 {
-  if(path.empty()) return "";
+  std::string message; // empty: no problem
+  int status = 0;
+  explicit operator bool() const { return !message.empty(); }
+};
+
+/// Everything that can be known about an output path before the computation.
+/// `inputs` are the files the run reads: an output must be none of them.
+inline Output_problem output_path_problem(const std::string& option, const std::string& path, bool mesh,
+                                          const std::vector<std::string>& inputs)
+{
+  auto usage = [](const std::string& m) { return Output_problem{m, 2}; };
+  auto unwritable = [](const std::string& m) { return Output_problem{m, 3}; };
+  if(path.empty()) return Output_problem();
   for(const std::string& in : inputs)
     if(same_file(path, in))
-      return option + " " + path + " is the input file " + in + ": refusing to overwrite an input";
+      return usage(option + " " + path + " is the input file " + in + ": refusing to overwrite an input");
   if(mesh) {
     const std::vector<std::string> ok = writable_mesh_extensions();
     const std::string e = lower_extension(path);
     if(std::find(ok.begin(), ok.end(), e) == ok.end()) {
       std::string list;
       for(const std::string& s : ok) list += (list.empty() ? "." : ", .") + s;
-      return option + " " + path + ": " + (e.empty() ? "no extension" : "unsupported format ." + e) +
-             " (supported: " + list + ")";
+      return usage(option + " " + path + ": " + (e.empty() ? "no extension" : "unsupported format ." + e) +
+                   " (supported: " + list + ")");
     }
   }
   std::error_code ec;
-  if(fs::is_directory(path, ec)) return option + " " + path + " is a directory";
+  if(fs::is_directory(path, ec)) return usage(option + " " + path + " is a directory");
   const fs::path dir = directory_of(path);
-  if(!fs::is_directory(dir, ec)) return option + " " + path + ": directory " + dir.string() + " does not exist";
-  if(fs::exists(path, ec) && !fs::is_regular_file(path, ec)) return ""; // a device or pipe: written in place
+  if(!fs::is_directory(dir, ec))
+    return unwritable(option + " " + path + ": directory " + dir.string() + " does not exist");
+  if(fs::exists(path, ec) && !fs::is_regular_file(path, ec)) return Output_problem(); // a device or pipe
   std::string error;
   const std::string probe = make_temporary_beside(path, error);
-  if(probe.empty()) return option + " " + path + ": cannot create a file in " + dir.string() + " (" + error + ")";
+  if(probe.empty())
+    return unwritable(option + " " + path + ": cannot create a file in " + dir.string() + " (" + error + ")");
   fs::remove(probe, ec);
-  return "";
+  return Output_problem();
 }
 
 /// Writes `path` through `write(temporary_name)`: the temporary file (same
