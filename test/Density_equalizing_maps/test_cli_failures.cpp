@@ -147,6 +147,17 @@ void reading_errors(const Temporary_folder& dir)
   Soup tn = t;
   tn.V[2][1] = std::nan("");
   reads("nan.stl", stl_binary_text(tn), "non-finite", "triangle 0");
+
+  // The inputs test_cli_fuzz (seed 15) found, kept as they were, both from
+  // before the scan ran first: a face announcing 999999999 corners kept
+  // CGAL's OFF reader busy for 30 s; a binary PLY with a malformed "element"
+  // header line crashed it (segmentation fault).
+  const fs::path cases = fs::path(__FILE__).parent_path() / "fuzz_cases";
+  const Result slow = run_dem(dir, "spherical-conformal " + quoted((cases / "seed15_slow_huge_face.off").string()), 10);
+  expect(slow, 3, "fuzz case: a face announcing 999999999 corners, refused at once", "announces 999999999 vertices");
+  const Result crash =
+    run_dem(dir, "spherical-conformal " + quoted((cases / "seed15_crash_malformed_header.ply").string()), 10);
+  expect(crash, 3, "fuzz case: a binary PLY with a malformed header line, no crash", "unexpected header line");
 }
 
 /// `base` with faces duplicated, unwelded vertices, flipped faces, an extra

@@ -2,12 +2,12 @@
 // This file is part of Density_equalizing_maps, a third-party CGAL package.
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
-// Why a mesh file could not be read. CGAL's readers answer only "false"; when
-// they do, the dem tool scans the file itself (OFF, OBJ, PLY ascii and
+// Why a mesh file cannot be read. CGAL's readers answer only "false" (and
+// trust header counts), so the dem tool first scans the file itself (OFF, OBJ, PLY ascii and
 // binary, STL ascii and binary) for the causes a user can fix: a non-finite
 // coordinate (line k / vertex k), a face index out of range (face k), a file
-// shorter than its header announces, a malformed line. The scan is a
-// diagnosis only: the mesh is always read by CGAL.
+// shorter than its header announces, a malformed line. The mesh itself is
+// then read by CGAL.
 
 #ifndef DEM_TOOL_MESH_DIAGNOSIS_H
 #define DEM_TOOL_MESH_DIAGNOSIS_H
