@@ -56,9 +56,17 @@ std::string usage_text()
     "  --output FILE              the mapped mesh (same connectivity, vertices on the domain)\n"
     "  --metrics FILE             JSON metrics; a one-line summary always goes to stdout\n"
     "  --quiet                    no progress messages on stderr\n"
+    "  --repair                   repair a polygon soup first (merge duplicated vertices, remove\n"
+    "                             duplicated and degenerate faces, orient consistently, keep the\n"
+    "                             largest component) and print what changed; off by default\n"
     "  --help, --version          usage / the build's sparse solver\n"
-    "exit status: 0 done, 2 usage error, 3 invalid input or unwritable file,\n"
-    "             4 no fold-over-free map (metrics written, output not written)\n";
+    "exit status: 0 done; 2 usage error (also: unsupported output format, an output that is an input);\n"
+    "             3 invalid input (also: an output directory that is missing or not writable);\n"
+    "             4 the method failed: fold-overs left, stalled, or a numerical failure (says which;\n"
+    "               metrics written, mesh output not written)\n"
+    "files: outputs are checked before the computation and written atomically (temporary file +\n"
+    "       rename); on exit 3 or 4 an --output (and on exit 3 a --metrics) file left by an earlier\n"
+    "       run is deleted, so that no stale result looks current. Inputs are never overwritten.\n";
   if(!applications().empty()) {
     text += "applications (dem NAME --help for their options):\n";
     for(const Application& a : applications()) text += std::string("  ") + a.synopsis + "\n";
@@ -132,6 +140,7 @@ Parse_status parse_command_line(const std::vector<std::string>& args, Options& o
     else if(a == "--optimize-radii") opt.optimize_radii = true;
     else if(a == "--mobius") opt.mobius = true;
     else if(a == "--quiet") opt.quiet = true;
+    else if(a == "--repair") opt.repair = true;
     else if(a == "--time-step") ok = scalar(opt.time_step);
     else if(a == "--tolerance") ok = scalar(opt.tolerance);
     else if(a == "--alpha") ok = scalar(opt.alpha);

@@ -76,6 +76,7 @@ struct Options
   bool optimize_radii = false;
   bool mobius = false;
   bool quiet = false;
+  bool repair = false; // --repair: PMP soup repair before validation (soup_repair.h)
   std::optional<double> time_step, tolerance, alpha, beta, gamma, lambda;
   std::optional<std::size_t> max_iterations;
 };

@@ -5,9 +5,12 @@
 // `dem METHOD INPUT [options]`: map a mesh with one of the nine methods,
 // print the summary, write the metrics and the mapped mesh (DESIGN.md).
 //
-// Exit status: 0 done; 2 usage error; 3 invalid input (message on stderr);
-// 4 the algorithm could not produce a fold-over-free map (the metrics are
-// still written, the output mesh is not).
+// Exit status: 0 done; 2 usage error (also an unsupported output format or an
+// output that is an input); 3 invalid input (also an output folder that is
+// missing or not writable); 4 the method failed on a valid input: fold-overs
+// left, a stall, or a numerical failure (Algorithm_failure); the message says
+// which. On 4 the metrics are still written, the output mesh is not. On 3 and
+// 4 an output file of an earlier run is deleted (output_files.h).
 //
 // The input is read as a polygon soup and validated on index arrays before a
 // halfedge structure is built, so that non-manifold edges or open boundaries,
@@ -16,7 +19,9 @@
 #include "commands.h"
 #include "maps.h"
 #include "metrics.h"
+#include "output_files.h"
 
+#include <cstdio>
 #include <exception>
 #include <iostream>
 #include <new>
@@ -24,6 +29,25 @@
 #include <vector>
 
 namespace dem_cli {
+
+namespace {
+
+/// What went wrong in a run that returned a map, as it is: fold-overs left
+/// (exact count), or a stall with a fold-over-free but unconverged map.
+std::string failure_description(const DEM::Map_report& r)
+{
+  if(r.fold_overs > 0)
+    return "the map has " + std::to_string(r.fold_overs) + " fold-over(s) (exact count; " +
+           DEM::to_string(r.termination) + ", " + std::to_string(r.iterations) + " iteration(s))";
+  char buffer[256];
+  std::snprintf(buffer, sizeof buffer,
+                "stalled after %zu iteration(s): no fold-over-free step could be found; the last map has no "
+                "fold-over but did not converge (final error %.3g)",
+                r.iterations, r.final_error);
+  return buffer;
+}
+
+} // namespace
 
 int map_command(const std::vector<std::string>& args)
 {
@@ -38,6 +62,30 @@ int map_command(const std::vector<std::string>& args)
       return 2;
     }
   }
+  // The files this run reads: no output may be one of them, and a stale
+  // output is never deleted if it is one of them.
+  std::vector<std::string> inputs = {opt.input, opt.landmarks, opt.cut_edges};
+  if(opt.population != "area") inputs.push_back(opt.population);
+  if(!opt.output.empty() && (opt.output == opt.metrics || same_file(opt.output, opt.metrics))) {
+    std::cerr << "dem: --output and --metrics name the same file " << opt.output << "\n";
+    return 2;
+  }
+  for(const Output_problem& p : {output_path_problem("--output", opt.output, true, inputs),
+                                 output_path_problem("--metrics", opt.metrics, false, inputs)})
+    if(p) {
+      std::cerr << "dem: " << p.message << "\n";
+      return p.status;
+    }
+  // On a failure, an output left by an earlier run must not look like this
+  // run's result: it is deleted (the metrics too unless this run writes them).
+  auto fail = [&](int status, bool metrics_written) {
+    std::string deleted;
+    if(remove_stale_output(opt.output, inputs)) deleted += " " + opt.output;
+    if(!metrics_written && remove_stale_output(opt.metrics, inputs)) deleted += " " + opt.metrics;
+    if(!deleted.empty()) std::cerr << "dem: deleted the output of an earlier run:" << deleted << "\n";
+    return status;
+  };
+
   Problem pb;
   Run run;
   try {
@@ -46,13 +94,16 @@ int map_command(const std::vector<std::string>& args)
     run = run_map(pb, opt);
   } catch(const DEM::Invalid_input& e) {
     std::cerr << "dem: invalid input: " << e.what() << "\n";
-    return 3;
+    return fail(3, false);
+  } catch(const DEM::Algorithm_failure& e) {
+    std::cerr << "dem: " << method_name(opt.method) << " failed (the input is valid): " << e.what() << "\n";
+    return fail(4, false);
   } catch(const std::bad_alloc&) {
     std::cerr << "dem: out of memory\n";
-    return 4;
+    return fail(4, false);
   } catch(const std::exception& e) {
     std::cerr << "dem: " << method_name(opt.method) << " failed: " << e.what() << "\n";
-    return 4;
+    return fail(4, false);
   }
   for(const std::string& n : run.notes) std::cerr << "dem: " << n << "\n";
 
@@ -73,22 +124,21 @@ int map_command(const std::vector<std::string>& args)
 
   if(!opt.metrics.empty() && !write_metrics_json(opt.metrics, m)) {
     std::cerr << "dem: cannot write " << opt.metrics << "\n";
-    return 3;
+    return fail(3, false);
   }
   std::cout << summary_line(m) << std::endl;
 
   const bool failed = run.report.fold_overs > 0 || run.report.termination == DEM::Termination::STALLED;
   if(failed) {
-    std::cerr << "dem: " << method_name(opt.method) << " could not produce a fold-over-free map ("
-              << run.report.fold_overs << " fold-over(s), " << DEM::to_string(run.report.termination) << ")"
-              << (run.report.message.empty() ? "" : ": " + run.report.message) << "; "
+    std::cerr << "dem: " << method_name(opt.method) << " failed: " << failure_description(run.report)
+              << (run.report.message.empty() ? "" : " (" + run.report.message + ")") << "; "
               << (opt.output.empty() ? "" : "nothing written to " + opt.output + ", ")
               << (opt.metrics.empty() ? "no metrics requested" : "metrics written to " + opt.metrics) << "\n";
-    return 4;
+    return fail(4, true);
   }
   if(!opt.output.empty() && !write_output(opt.output, run.Y, pb.F)) {
     std::cerr << "dem: cannot write " << opt.output << "\n";
-    return 3;
+    return fail(3, true);
   }
   return 0;
 }

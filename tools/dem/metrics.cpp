@@ -3,6 +3,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 
 #include "metrics.h"
+#include "output_files.h"
 
 #include <CGAL/Density_equalizing_maps/internal/beltrami.h>
 #include <CGAL/Density_equalizing_maps/internal/measures.h>
@@ -120,10 +121,14 @@ std::string metrics_json(const Metrics& m)
 
 bool write_metrics_json(const std::string& file, const Metrics& m)
 {
-  std::ofstream out(file);
-  if(!out) return false;
-  out << metrics_json(m);
-  return bool(out);
+  std::string error;
+  return write_atomically(file, [&](const std::string& f) {
+    std::ofstream out(f);
+    if(!out) return false;
+    out << metrics_json(m);
+    out.close();
+    return bool(out);
+  }, error);
 }
 
 std::string summary_line(const Metrics& m)

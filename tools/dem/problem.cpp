@@ -3,6 +3,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 
 #include "problem.h"
+#include "mesh_input.h"
+#include "output_files.h"
 
 #include <CGAL/Density_equalizing_maps/IO/sidecar_files.h>
 #include <CGAL/Density_equalizing_maps/internal/operators.h>
@@ -93,22 +95,27 @@ void read_mesh(const Options& opt, Problem& pb)
 {
   std::vector<Point_3> points;
   std::vector<std::vector<std::size_t>> polygons;
-  {
-    std::ifstream probe(opt.input);
-    if(!probe) throw DEM::Invalid_input("cannot open " + opt.input);
+  read_input_soup(opt.input, points, polygons);
+  if(opt.repair) {
+    const Soup_repairs r = repair_soup<Mesh>(points, polygons);
+    pb.repairs = r.summary();
+    pb.repaired = r.changed();
+    if(!opt.quiet || pb.repaired) std::cerr << "dem: --repair: " << pb.repairs << "\n";
+    if(pb.repaired && ((!opt.population.empty() && opt.population != "area") || !opt.landmarks.empty() ||
+                       !opt.cut_edges.empty()))
+      throw DEM::Invalid_input("--repair changed the mesh (" + pb.repairs +
+                               "), so the faces and vertices of the --population, --landmarks or --cut-edges "
+                               "file no longer match it: write the repaired mesh first (dem METHOD INPUT "
+                               "--repair --output REPAIRED) and give files for that mesh");
   }
-  bool ok = false;
   try {
-    ok = CGAL::IO::read_polygon_soup(opt.input, points, polygons, CGAL::parameters::verbose(false));
-  } catch(const std::exception& e) {
-    throw DEM::Invalid_input("cannot read " + opt.input + ": " + e.what());
+    soup_to_arrays(points, polygons, pb.X, pb.F);
+    DI::validate_closed_surface(pb.X, pb.F, domain_of(opt.method) == Domain::TORUS ? 0 : 2,
+                                domain_of(opt.method) == Domain::TORUS ? 7 : 4);
+  } catch(const DEM::Invalid_input& e) {
+    throw DEM::Invalid_input(opt.repair ? std::string(e.what()) + " (after --repair: " + pb.repairs + ")"
+                                        : with_repair_hint(e.what()));
   }
-  if(!ok || polygons.empty())
-    throw DEM::Invalid_input("cannot read a mesh from " + opt.input +
-                             " (unknown format, syntax error or no face)");
-  soup_to_arrays(points, polygons, pb.X, pb.F);
-  DI::validate_closed_surface(pb.X, pb.F, domain_of(opt.method) == Domain::TORUS ? 0 : 2,
-                              domain_of(opt.method) == Domain::TORUS ? 7 : 4);
   CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(points, polygons, pb.mesh);
   if(pb.mesh.number_of_vertices() != std::size_t(pb.X.rows()) ||
      pb.mesh.number_of_faces() != std::size_t(pb.F.rows()))
@@ -155,7 +162,10 @@ bool write_output(const std::string& file, const DI::Matrix& Y, const DI::Index_
   std::vector<std::array<std::size_t, 3>> triangles(std::size_t(F.rows()));
   for(Eigen::Index k = 0; k < F.rows(); ++k)
     for(int c = 0; c < 3; ++c) triangles[k][c] = std::size_t(F(k, c));
-  return CGAL::IO::write_polygon_soup(file, points, triangles, CGAL::parameters::stream_precision(17));
+  std::string error;
+  return write_atomically(file, [&](const std::string& f) {
+    return CGAL::IO::write_polygon_soup(f, points, triangles, CGAL::parameters::stream_precision(17));
+  }, error);
 }
 
 } // namespace dem_cli

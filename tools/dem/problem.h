@@ -48,6 +48,9 @@ struct Problem
   bool explicit_population = false;
   Landmarks landmarks;
   std::vector<std::pair<Vertex, Vertex>> cut_edges;
+  /// --repair: what it changed ("" without --repair), and whether it changed anything
+  std::string repairs;
+  bool repaired = false;
 };
 
 /// Result of a method run: the image positions and the report.
@@ -99,7 +102,8 @@ void read_sidecars(const Options& opt, Problem& pb);
 /// Landmark targets as rows, with their vertex indices.
 DI::Matrix landmark_targets(const Landmarks& l, std::vector<Eigen::Index>& index);
 
-/// Writes a triangle mesh (positions Y, faces F) in the format of the file's extension.
+/// Writes a triangle mesh (positions Y, faces F) in the format of the file's
+/// extension, atomically (a temporary file in the same folder, then renamed).
 bool write_output(const std::string& file, const DI::Matrix& Y, const DI::Index_matrix& F);
 
 } // namespace dem_cli

@@ -28,6 +28,25 @@ public:
 };
 
 /// \ingroup PkgDensityEqualizingMapsRef
+/// Exception thrown when the input is valid but the method itself could not
+/// produce its result: a step that cannot fail in exact arithmetic failed in
+/// floating point (a linear solve or factorization, a computed starting map
+/// that is not bijective or not finite). `what()` says which step failed and,
+/// for a starting map, its exact fold-over count. It is not a subclass of
+/// `Invalid_input`: the caller did nothing wrong, and a tool reports it with a
+/// different status (the `dem` tool exits with status 4, not 3). Nothing is
+/// written to the output maps when it is thrown.
+///
+/// A run that starts but cannot improve further (a density-equalizing flow
+/// that stalls) does not throw: it returns its last bijective map with
+/// `Map_report::termination` set to `Termination::STALLED`.
+class Algorithm_failure : public std::runtime_error
+{
+public:
+  explicit Algorithm_failure(const std::string& what_arg) : std::runtime_error(what_arg) {}
+};
+
+/// \ingroup PkgDensityEqualizingMapsRef
 /// How an iterative method ended.
 enum class Termination
 {

@@ -52,7 +52,7 @@ void ellipsoid_setup_from_parameters(const TriangleMesh& tm, const NamedParamete
   } else {
     frame = principal_frame(a.X);
     radii = frame.extent / frame.extent.mean();
-    check_radii(radii); // a flat mesh has a zero extent
+    check_radii(radii, "the default ellipsoid radii (bounding box of the mesh in its principal frame)");
   }
   if constexpr(!is_default_parameter<NamedParameters, internal_np::pole_vertices_t>::value) {
     const auto& pv = get_parameter(np, internal_np::pole_vertices);
@@ -89,7 +89,7 @@ void ellipsoid_setup_from_parameters(const TriangleMesh& tm, const NamedParamete
 /// \pre `tm` is a closed, connected, manifold triangle mesh of genus 0 without degenerate faces
 ///      (checked: `Invalid_input` otherwise)
 /// \pre `tm` is not flat: its bounding box has a positive extent along each axis (checked)
-/// \throws Invalid_input if the mesh is invalid or flat
+/// \throws Invalid_input if the mesh is invalid, flat or so thin that its radii differ by more than a factor 1e6
 /// \returns the radii (a, b, c), of mean 1
 template <class TriangleMesh, class NamedParameters = parameters::Default_named_parameters>
 std::array<double, 3> bounding_box_ellipsoid_radii(const TriangleMesh& tm,
@@ -97,7 +97,7 @@ std::array<double, 3> bounding_box_ellipsoid_radii(const TriangleMesh& tm,
 {
   const auto a = internal::closed_surface_arrays(tm, np, 2);
   const Eigen::Vector3d r = internal::bounding_box_radii(a.X);
-  internal::check_radii(r);
+  internal::check_radii(r, "the bounding-box radii of the mesh (in its principal frame)");
   return {r[0], r[1], r[2]};
 }
 
@@ -181,7 +181,9 @@ std::array<double, 3> bounding_box_ellipsoid_radii(const TriangleMesh& tm,
 ///     \cgalParamDefault{an internal or dynamically filled map}
 ///   \cgalParamNEnd
 ///   \cgalParamNBegin{ellipsoid_radii}
-///     \cgalParamDescription{the radii (a, b, c) of the target ellipsoid, all positive}
+///     \cgalParamDescription{the radii (a, b, c) of the target ellipsoid, all positive, each in [1e-100, 1e100],
+///       the largest at most 1e6 times the smallest (independent of the scale of the mesh: the map is computed
+///       in the ellipsoid's units)}
 ///     \cgalParamType{`std::array<double, 3>`}
 ///     \cgalParamDefault{`bounding_box_ellipsoid_radii(tm)`}
 ///   \cgalParamNEnd
@@ -217,8 +219,11 @@ std::array<double, 3> bounding_box_ellipsoid_radii(const TriangleMesh& tm,
 /// \returns a `Map_report` with `radii` = the radii used (or found), `fold_overs` = the exact count of
 /// faces not positively oriented about the ellipsoid's centre; with `optimize_radii`, `iterations`,
 /// `initial_error` and `final_error` (area distortion energies)
-/// \throws Invalid_input if the mesh is not a valid genus-0 closed surface, a radius is not positive
-/// and finite, or the pole vertices are not three distinct vertices of the mesh; nothing is written then.
+/// \throws Invalid_input if the mesh is not a valid genus-0 closed surface, the radii are not positive,
+/// finite and in the supported range: each in [1e-100, 1e100], the largest at most 1e6 times the smallest,
+/// or the pole vertices are not three distinct vertices of the mesh; nothing is written then.
+/// \throws Algorithm_failure if the spherical conformal map or the ellipsoidal chart could not be computed
+/// (linear solver failure, non-finite result); nothing is written then.
 template <class TriangleMesh, class VertexPointOutMap,
           class NamedParameters = parameters::Default_named_parameters>
 Map_report ellipsoidal_conformal_map(const TriangleMesh& tm, VertexPointOutMap ellipsoid_map,
@@ -340,6 +345,7 @@ std::array<double, 3> optimal_ellipsoid_radii(const TriangleMesh& tm,
 /// if the loop did not remove every planar fold, and `fold_overs` = the exact count on the output
 /// \throws Invalid_input for an invalid mesh, radii or pole vertices, an empty landmark set, a landmark
 /// vertex not in the mesh or listed twice, a target not on the ellipsoid, or a non-positive weight
+/// \throws Algorithm_failure as `ellipsoidal_conformal_map()`
 template <class TriangleMesh, class LandmarkRange, class VertexPointOutMap,
           class NamedParameters = parameters::Default_named_parameters>
 Map_report ellipsoidal_quasiconformal_map(const TriangleMesh& tm, const LandmarkRange& landmarks,

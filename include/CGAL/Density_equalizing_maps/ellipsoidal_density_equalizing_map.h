@@ -155,6 +155,8 @@ Map_report ellipsoidal_density_equalization(const TriangleMesh& tm, VertexPointO
 /// \returns a `Map_report` whose `message` says which map was chosen, with the radii and the exact fold-over
 ///   count (0)
 /// \throws Invalid_input on an invalid mesh, population or radii; nothing is written then.
+/// \throws Algorithm_failure if the spherical or ellipsoidal conformal map could not be computed; nothing is
+///   written then.
 template <class TriangleMesh, class VertexPointOutMap,
           class NamedParameters = parameters::Default_named_parameters>
 Map_report ellipsoidal_density_equalizing_initial_map(const TriangleMesh& tm, VertexPointOutMap initial_map,
@@ -192,7 +194,7 @@ Map_report ellipsoidal_density_equalizing_initial_map(const TriangleMesh& tm, Ve
 /// \param np optional named parameters:
 /// \cgalNamedParamsBegin
 ///   \cgalParamNBegin{ellipsoid_radii}
-///     \cgalParamDescription{the radii (a, b, c), all positive}
+///     \cgalParamDescription{the radii (a, b, c), all positive, in the range of `ellipsoidal_conformal_map()`}
 ///     \cgalParamType{`std::array<double, 3>`}
 ///     \cgalParamDefault{the bounding-box radii of the input, normalized to mean 1}
 ///   \cgalParamNEnd
@@ -222,7 +224,10 @@ Map_report ellipsoidal_density_equalizing_initial_map(const TriangleMesh& tm, Ve
 ///      positive and finite on every face or vertex (checked)
 /// \pre the radii, if given, are positive and finite (checked)
 /// \returns a `Map_report` with the radii used
-/// \throws Invalid_input on an invalid mesh, population, radii or parameter; nothing is written then.
+/// \throws Invalid_input on an invalid mesh, population, radii or parameter, or an `initial_map` that is not
+///   finite or not bijective; nothing is written then.
+/// \throws Algorithm_failure if the default starting map could not be computed (see
+///   `ellipsoidal_density_equalizing_initial_map()`); nothing is written then.
 template <class TriangleMesh, class VertexPointOutMap,
           class NamedParameters = parameters::Default_named_parameters>
 Map_report ellipsoidal_density_equalizing_map(const TriangleMesh& tm, VertexPointOutMap ellipsoid_map,
@@ -265,6 +270,7 @@ Map_report ellipsoidal_density_equalizing_map(const TriangleMesh& tm, VertexPoin
 /// \pre the initial radii, if given, are positive and finite, and `beltrami_weight` is non-negative
 ///      (checked)
 /// \returns a `Map_report` with the final radii and the exact fold-over count of the output
+/// \throws Invalid_input, Algorithm_failure as `ellipsoidal_density_equalizing_map()`
 template <class TriangleMesh, class VertexPointOutMap,
           class NamedParameters = parameters::Default_named_parameters>
 Map_report ellipsoidal_density_equalizing_quasiconformal_map(const TriangleMesh& tm, VertexPointOutMap ellipsoid_map,

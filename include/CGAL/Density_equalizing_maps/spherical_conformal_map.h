@@ -55,6 +55,8 @@ namespace Density_equalizing_maps {
 ///      (checked: `Invalid_input` otherwise)
 /// \returns a `Map_report` whose `fold_overs` is the exact count of inverted faces
 /// \throws Invalid_input if the mesh is not a valid genus-0 closed surface; nothing is written then.
+/// \throws Algorithm_failure if neither the harmonic map nor the Tutte embedding could be computed (linear
+///   solver failure or non-finite result); nothing is written then.
 template <class TriangleMesh, class VertexPointOutMap,
           class NamedParameters = parameters::Default_named_parameters>
 Map_report spherical_conformal_map(const TriangleMesh& tm, VertexPointOutMap sphere_map,
@@ -85,10 +87,12 @@ Map_report spherical_conformal_map(const TriangleMesh& tm, VertexPointOutMap sph
 /// \param np `vertex_point_map`, `vertex_index_map` as for `spherical_conformal_map()`
 /// \pre `tm` is a closed, connected, manifold triangle mesh of genus 0 without degenerate faces
 ///      (checked: `Invalid_input` otherwise)
-/// \pre `sphere_map` gives every vertex a finite point of the unit sphere and is fold-over free, as
-///      the output of `spherical_conformal_map()` is (non-finite coordinates are rejected with
-///      `Invalid_input`)
+/// \pre `sphere_map` is a bijective map onto the sphere centred at the origin (points off the unit sphere
+///   are projected radially onto it), as the output of `spherical_conformal_map()` is
 /// \returns a `Map_report` with the fold-over count of the output
+/// \throws Invalid_input if the mesh is not a valid genus-0 closed surface, or `sphere_map` has a
+///   non-finite point, a point at the center, or an inverted face (exact count, after the radial
+///   projection); nothing is written then.
 template <class TriangleMesh, class VertexPointMap, class VertexPointOutMap,
           class NamedParameters = parameters::Default_named_parameters>
 Map_report mobius_area_correction(const TriangleMesh& tm, VertexPointMap sphere_map, VertexPointOutMap corrected_map,
@@ -96,8 +100,11 @@ Map_report mobius_area_correction(const TriangleMesh& tm, VertexPointMap sphere_
 {
   const auto a = internal::closed_surface_arrays(tm, np, 2);
   internal::Matrix S = internal::read_points(a, sphere_map);
-  if(!S.allFinite()) throw Invalid_input("the spherical map has non-finite coordinates");
+  internal::validate_spherical_points(S, "the spherical map");
   internal::normalize_rows(S);
+  const std::size_t folds = internal::count_inverted_faces_about_center(S, a.F);
+  if(folds > 0)
+    throw Invalid_input("the spherical map is not bijective: " + std::to_string(folds) + " fold-overs (exact count)");
   const internal::Matrix Q = internal::mobius_area_correction(a.X, a.F, S);
   Map_report report;
   report.fold_overs = internal::count_inverted_faces_about_center(Q, a.F);

@@ -16,8 +16,11 @@ namespace CGAL {
 namespace Density_equalizing_maps {
 namespace internal {
 
-/// The starting sphere: the user's `initial_map` (checked bijective), else
-/// the spherical conformal map with Moebius area correction (paper 001).
+/// The starting sphere: the user's `initial_map` (checked: finite, no point at
+/// the center, bijective; `Invalid_input` otherwise), else the spherical
+/// conformal map with Moebius area correction (paper 001), which is bijective
+/// in exact arithmetic: if its exact fold-over count is not 0 the computation
+/// failed (`Algorithm_failure`), the input is not at fault.
 template <class TriangleMesh, class NamedParameters>
 Matrix initial_spherical_map(const Mesh_arrays<TriangleMesh>& a, const NamedParameters& np, const Spd_solver& solver)
 {
@@ -26,17 +29,18 @@ Matrix initial_spherical_map(const Mesh_arrays<TriangleMesh>& a, const NamedPara
   Matrix S;
   if constexpr(!is_default_parameter<NamedParameters, internal_np::initial_map_t>::value) {
     S = read_points(a, get_parameter(np, internal_np::initial_map));
-    if(!S.allFinite()) throw Invalid_input("the initial map has non-finite coordinates");
-    for(Eigen::Index i = 0; i < S.rows(); ++i)
-      if(S.row(i).norm() == 0) throw Invalid_input("the initial map sends vertex " + std::to_string(i) + " to the origin");
+    validate_spherical_points(S, "the initial map");
     normalize_rows(S);
+    const std::size_t folds = count_inverted_faces_about_center(S, a.F);
+    if(folds > 0)
+      throw Invalid_input("the initial map is not bijective: " + std::to_string(folds) + " fold-overs (exact count)");
   } else {
     S = mobius_area_correction(a.X, a.F, flash_spherical_map(a.X, a.F, solver).S);
+    const std::size_t folds = count_inverted_faces_about_center(S, a.F);
+    if(folds > 0)
+      throw Algorithm_failure("the computed initial spherical map (conformal map with Moebius area correction) is "
+                              "not bijective: " + std::to_string(folds) + " fold-overs (exact count)");
   }
-  const std::size_t folds = count_inverted_faces_about_center(S, a.F);
-  if(folds > 0)
-    throw Invalid_input("the initial spherical map is not bijective: " + std::to_string(folds) +
-                        " fold-overs (exact count)");
   return S;
 }
 
@@ -117,7 +121,10 @@ Matrix initial_spherical_map(const Mesh_arrays<TriangleMesh>& a, const NamedPara
 ///      positive and finite on every face or vertex (checked)
 /// \pre `initial_map`, when given, is a fold-over-free map of `tm` onto the unit sphere (checked)
 /// \returns a `Map_report` (iterations, termination, final sd/mean, fold-overs = 0 unless stalled from the start)
-/// \throws Invalid_input on an invalid mesh, population or parameter; nothing is written then.
+/// \throws Invalid_input on an invalid mesh, population or parameter (including an `initial_map` that is not
+///   finite, sends a vertex to the center or is not bijective); nothing is written then.
+/// \throws Algorithm_failure if the computed starting map is not bijective or a linear solve of it failed;
+///   nothing is written then.
 template <class TriangleMesh, class VertexPointOutMap,
           class NamedParameters = parameters::Default_named_parameters>
 Map_report spherical_density_equalizing_map(const TriangleMesh& tm, VertexPointOutMap sphere_map,
@@ -193,6 +200,10 @@ Map_report spherical_density_equalizing_map(const TriangleMesh& tm, VertexPointO
 /// \pre the weights `density_weight`, `harmonic_weight` and `landmark_weight` are non-negative
 ///      (checked)
 /// \returns a `Map_report` with `landmark_error` = mean distance between mapped landmarks and targets
+/// \throws Invalid_input on an invalid mesh, population or parameter, an empty landmark set, a landmark vertex
+///   out of range or listed more than once, a target off the unit sphere or non-finite; nothing is written then.
+/// \throws Algorithm_failure if the harmonic-energy system cannot be factored or the computed starting map is
+///   not bijective; nothing is written then.
 template <class TriangleMesh, class Landmarks, class VertexPointOutMap,
           class NamedParameters = parameters::Default_named_parameters>
 Map_report landmark_aligned_spherical_density_equalizing_map(const TriangleMesh& tm, const Landmarks& landmarks,
@@ -225,7 +236,7 @@ Map_report landmark_aligned_spherical_density_equalizing_map(const TriangleMesh&
   const auto solver = internal::solver_from_parameters(np);
   const auto diffusion_solver = internal::diffusion_solver_from_parameters(np);
   if(!flow.prepare(a.X, a.F, options.time_step, *solver))
-    throw Invalid_input("the harmonic-energy system of the input mesh could not be factored");
+    throw Algorithm_failure("the harmonic-energy system of the input mesh could not be factored");
   internal::Matrix x = internal::initial_spherical_map(a, np, *solver);
   internal::Ellipsoid_domain sphere(a.F, x, Eigen::Vector3d::Ones(), truncation, *solver);
   const internal::Engine_result r = internal::run_density_equalization(sphere, flow, x, population, options, *diffusion_solver);

@@ -108,7 +108,7 @@ inline void fill_toroidal_report(const Toroidal_run& run, const Torus_radii& t, 
 /// \param np named parameters:
 /// \cgalNamedParamsBegin
 ///   \cgalParamNBegin{torus_radii}
-///     \cgalParamDescription{the radii \f$ \{R, r\} \f$ of the torus, \f$ R > r > 0 \f$ (required)}
+///     \cgalParamDescription{the radii \f$ \{R, r\} \f$ of the torus, \f$ R > r > 0 \f$, both in [1e-100, 1e100], R / r at most 1e6 (required)}
 ///     \cgalParamType{`std::array<double,2>`}
 ///   \cgalParamNEnd
 ///   \cgalParamNBegin{face_population_map}
@@ -234,6 +234,8 @@ Map_report toroidal_density_equalizing_map(const TriangleMesh& tm, VertexPointOu
 /// \throws Invalid_input if the mesh is not a valid closed genus-one surface, if the radii, the
 ///   population or the cut edges are invalid (out-of-range vertex, not an edge, not two loops
 ///   crossing once at one base vertex); nothing is written then.
+/// \throws Algorithm_failure if the initial periodic harmonic map could not be computed (a linear
+///   solve failed); nothing is written then.
 template <class TriangleMesh, class VertexPointOutMap,
           class NamedParameters = parameters::Default_named_parameters>
 Map_report toroidal_parameterization(const TriangleMesh& tm, VertexPointOutMap torus_map,
@@ -245,7 +247,7 @@ Map_report toroidal_parameterization(const TriangleMesh& tm, VertexPointOutMap t
   const auto a = internal::closed_surface_arrays(tm, np, 0);
   const internal::Vector population = internal::population_from_parameters(a, np);
   const internal::Engine_options options = internal::engine_options_from_parameters(np, 0.1, 1e-2, 1000);
-  const Eigen::Index n = a.X.rows(), m = a.F.rows();
+  const Eigen::Index n = a.X.rows();
   const internal::Halfedge_table halfedges(a.F, n);
   internal::Halfedge_offsets cocycles;
   int base = 0;
@@ -264,14 +266,9 @@ Map_report toroidal_parameterization(const TriangleMesh& tm, VertexPointOutMap t
   }
   const auto solver = internal::solver_from_parameters(np);
   internal::Flat_torus_parameterization initial;
-  if(!internal::flat_torus_harmonic_map(a.X, a.F, cocycles, base, t, population, *solver, initial)) {
-    Map_report report;
-    report.termination = Termination::STALLED;
-    report.fold_overs = std::size_t(m);
-    report.message = "the periodic harmonic map could not be computed (linear solver failure)";
-    report.radii = {t.R, t.r};
-    return report;
-  }
+  if(!internal::flat_torus_harmonic_map(a.X, a.F, cocycles, base, t, population, *solver, initial))
+    throw Algorithm_failure("the initial periodic harmonic map onto the flat torus could not be computed "
+                            "(linear solver failure or non-finite result)");
   const auto repair_solver = internal::loop_solver_from_parameters(np);
   const auto diffusion_solver = internal::diffusion_solver_from_parameters(np, internal::toroidal_diffusion_tuning());
   const internal::Toroidal_run run = internal::run_toroidal_density_equalization(

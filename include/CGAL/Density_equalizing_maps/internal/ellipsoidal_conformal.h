@@ -28,6 +28,7 @@
 #include <CGAL/Density_equalizing_maps/internal/point_location.h>
 #include <CGAL/Density_equalizing_maps/internal/projections.h>
 #include <CGAL/Density_equalizing_maps/internal/spherical_conformal.h>
+#include <CGAL/Density_equalizing_maps/internal/validation.h>
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/IterativeLinearSolvers>
@@ -233,7 +234,7 @@ inline Ellipsoidal_chart ellipsoidal_chart(const Matrix& X, const Index_matrix& 
   if(perim_N > 0 && perim_S > 0 && std::isfinite(perim_N) && std::isfinite(perim_S)) h *= std::sqrt(perim_S / perim_N);
   ch.p = h;
   if(!ch.p.allFinite())
-    throw Invalid_input("the ellipsoidal chart is not finite: the spherical conformal map degenerated");
+    throw Algorithm_failure("the ellipsoidal chart is not finite: the spherical conformal map degenerated");
   ch.open_faces.resize(F.rows() - 1, 3);
   for(Eigen::Index k = 0, j = 0; k < F.rows(); ++k)
     if(k != tN) ch.open_faces.row(j++) = F.row(k);
@@ -331,12 +332,11 @@ struct Outside_inverse_correction
   Eigen::Vector2d operator()(const Eigen::Vector2d& q) const { return dilation * q - far_offset; }
 };
 
-inline void check_radii(const Eigen::Vector3d& r)
+/// Throws `Invalid_input` unless the radii are positive, finite and in the
+/// sane range of `validate_domain_radii()` (aspect at most 1e6, each in [1e-100, 1e100]).
+inline void check_radii(const Eigen::Vector3d& r, const std::string& what = "ellipsoid radii")
 {
-  for(int c = 0; c < 3; ++c)
-    if(!std::isfinite(r[c]) || !(r[c] > 0))
-      throw Invalid_input("ellipsoid radii must be positive and finite (got " + std::to_string(r[0]) + ", " +
-                          std::to_string(r[1]) + ", " + std::to_string(r[2]) + ")");
+  validate_domain_radii(r.data(), 3, what);
 }
 
 /// The radii-independent state of FECM and FEQCM plus the machinery reused

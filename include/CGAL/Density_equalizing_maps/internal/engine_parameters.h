@@ -11,6 +11,8 @@
 #include <CGAL/Density_equalizing_maps/internal/density_engine.h>
 #include <CGAL/Density_equalizing_maps/internal/input.h>
 
+#include <vector>
+
 namespace CGAL {
 namespace Density_equalizing_maps {
 namespace internal {
@@ -61,6 +63,9 @@ inline void fill_report(const Engine_result& r, Map_report& report)
 }
 
 /// Reads landmarks (vertex, target point) into indices and a target matrix.
+/// Throws `Invalid_input` for a vertex out of range, a non-finite target, or
+/// a vertex listed twice (two targets for one vertex contradict each other;
+/// even equal ones would count twice in the landmark energy).
 template <class TriangleMesh, class Landmarks, class NamedParameters>
 void read_landmarks(const TriangleMesh& tm, const Landmarks& landmarks, const NamedParameters& np,
                     std::vector<Eigen::Index>& vertices, Matrix& targets)
@@ -68,6 +73,7 @@ void read_landmarks(const TriangleMesh& tm, const Landmarks& landmarks, const Na
   auto vim = CGAL::get_initialized_vertex_index_map(tm, np);
   const std::size_t nv = static_cast<std::size_t>(num_vertices(tm));
   vertices.clear();
+  std::vector<char> listed(nv, 0);
   targets.resize(static_cast<Eigen::Index>(landmarks.size()), 3);
   Eigen::Index k = 0;
   for(const auto& lm : landmarks) {
@@ -75,6 +81,10 @@ void read_landmarks(const TriangleMesh& tm, const Landmarks& landmarks, const Na
     if(i >= nv)
       throw Invalid_input("landmark " + std::to_string(k) + ": vertex index " + std::to_string(i) +
                           " out of range (the mesh has " + std::to_string(nv) + " vertices)");
+    if(listed[i])
+      throw Invalid_input("landmark " + std::to_string(k) + ": vertex " + std::to_string(i) +
+                          " is listed more than once");
+    listed[i] = 1;
     vertices.push_back(static_cast<Eigen::Index>(i));
     targets(k, 0) = CGAL::to_double(lm.second.x());
     targets(k, 1) = CGAL::to_double(lm.second.y());

@@ -33,6 +33,7 @@
 #include <CGAL/Density_equalizing_maps/internal/operators.h>
 #include <CGAL/Density_equalizing_maps/internal/projections.h>
 #include <CGAL/Density_equalizing_maps/internal/sparse_solver.h>
+#include <CGAL/Density_equalizing_maps/internal/validation.h>
 
 #include <algorithm>
 #include <array>
@@ -64,12 +65,12 @@ struct Torus_radii
   double cell_area() const { return period_u() * period_v(); }
 };
 
-/// Throws unless R > r > 0 (both finite).
+/// Throws `Invalid_input` unless R > r > 0, both finite and in the sane range
+/// of `validate_domain_radii()` (R / r at most 1e6, both in [1e-100, 1e100]).
 inline void validate_torus_radii(double R, double r)
 {
-  if(!std::isfinite(R) || !std::isfinite(r) || !(r > 0) || !(R > 0))
-    throw Invalid_input("torus radii must be positive and finite (got R = " + std::to_string(R) +
-                        ", r = " + std::to_string(r) + ")");
+  const double radii[2] = {R, r};
+  validate_domain_radii(radii, 2, "torus radii (R, r)");
   if(!(R > r))
     throw Invalid_input("torus radii must satisfy R > r (got R = " + std::to_string(R) + ", r = " +
                         std::to_string(r) + "): the torus would self-intersect");

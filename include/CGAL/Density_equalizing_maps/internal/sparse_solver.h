@@ -21,6 +21,7 @@
 #include <CGAL/Eigen_sparse_matrix.h>
 #include <CGAL/Eigen_vector.h>
 
+#include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCholesky>
 #ifdef CGAL_DEM_USE_CHOLMOD
 #include <Eigen/CholmodSupport>
@@ -87,6 +88,62 @@ private:
 #endif
 };
 
+/// Reads the protected settings of an Eigen solver that have a setter but no
+/// getter (the iteration limit as set, not as resolved against the last
+/// matrix; the diagonal shifts). Forming a pointer to a protected member
+/// through a derived class is allowed, and applying it to a base object is
+/// not an access; the class is never instantiated as an object.
+template <class Solver>
+struct Eigen_solver_protected_settings : Solver
+{
+  static Eigen::Index max_iterations(const Solver& s)
+  { return s.*(&Eigen_solver_protected_settings::m_maxIterations); }
+  static void simplicial_shift(const Solver& s, double& offset, double& scale)
+  {
+    offset = double(s.*(&Eigen_solver_protected_settings::m_shiftOffset));
+    scale = double(s.*(&Eigen_solver_protected_settings::m_shiftScale));
+  }
+#ifdef CGAL_DEM_USE_CHOLMOD
+  static double cholmod_shift(const Solver& s) { return (s.*(&Eigen_solver_protected_settings::m_shiftOffset))[0]; }
+#endif
+};
+
+template <class T> struct Is_cholmod_solver : std::false_type {};
+#ifdef CGAL_DEM_USE_CHOLMOD
+template <class M, int U> struct Is_cholmod_solver<Eigen::CholmodSupernodalLLT<M, U> > : std::true_type {};
+template <class M, int U> struct Is_cholmod_solver<Eigen::CholmodSimplicialLLT<M, U> > : std::true_type {};
+template <class M, int U> struct Is_cholmod_solver<Eigen::CholmodSimplicialLDLT<M, U> > : std::true_type {};
+template <class M, int U> struct Is_cholmod_solver<Eigen::CholmodDecomposition<M, U> > : std::true_type {};
+#endif
+
+/// Gives the fresh solver `to` the user's settings of `from`. Eigen solvers
+/// cannot be copied, and copies of a `CGAL::Eigen_solver_traits` share one
+/// solver object, so a clone that must own its factorization builds a new
+/// solver and copies the settings it knows: the tolerance and iteration limit
+/// of the iterative solvers (conjugate gradients, BiCGSTAB, ...), the shift
+/// (offset, scale) of Eigen's simplicial Cholesky factorizations and CHOLMOD's
+/// shift. Preconditioner parameters and CHOLMOD's `cholmod_common` fields are
+/// not copied: the clones use their defaults.
+template <class Solver>
+void copy_eigen_solver_settings(const Solver& from, Solver& to)
+{
+  typedef Eigen_solver_protected_settings<Solver> Access;
+  if constexpr(std::is_base_of<Eigen::IterativeSolverBase<Solver>, Solver>::value) {
+    to.setTolerance(from.tolerance());
+    const Eigen::Index limit = Access::max_iterations(from);
+    if(limit >= 0) to.setMaxIterations(limit); // negative: Eigen's default (twice the size), kept
+  } else if constexpr(std::is_base_of<Eigen::SimplicialCholeskyBase<Solver>, Solver>::value) {
+    double offset = 0, scale = 1;
+    Access::simplicial_shift(from, offset, scale);
+    to.setShift(offset, scale);
+  }
+#ifdef CGAL_DEM_USE_CHOLMOD
+  else if constexpr(Is_cholmod_solver<Solver>::value) {
+    to.setShift(Access::cholmod_shift(from));
+  }
+#endif
+}
+
 /// Adapter for `CGAL::Eigen_solver_traits`: reuses the symbolic analysis while
 /// the sparsity pattern of the matrix does not change.
 template <class Traits>
@@ -116,8 +173,16 @@ public:
     X = m_traits.solver().solve(B);
     return m_traits.solver().info() == Eigen::Success && X.allFinite();
   }
+  /// A solver of its own (a copy of the traits would share the Eigen solver,
+  /// hence the factorization) with the user's settings.
   std::unique_ptr<Spd_solver> clone() const override
-  { return std::unique_ptr<Spd_solver>(new Eigen_traits_spd_solver<Traits>(Traits())); }
+  {
+    Traits fresh;
+    copy_eigen_solver_settings(const_cast<Traits&>(m_traits).solver(), fresh.solver());
+    return std::unique_ptr<Spd_solver>(new Eigen_traits_spd_solver<Traits>(fresh));
+  }
+  /// The traits (for tests: the settings a clone keeps).
+  const Traits& traits() const { return m_traits; }
 
 private:
   Traits m_traits;
@@ -154,8 +219,12 @@ public:
     }
     return X.allFinite();
   }
+  /// A copy of the user's traits object, with its settings (a model of the
+  /// concept holds its state by value).
   std::unique_ptr<Spd_solver> clone() const override
-  { return std::unique_ptr<Spd_solver>(new Generic_traits_spd_solver<Traits>(Traits())); }
+  { return std::unique_ptr<Spd_solver>(new Generic_traits_spd_solver<Traits>(m_traits)); }
+  /// The traits (for tests: the settings a clone keeps).
+  const Traits& traits() const { return m_traits; }
 
 private:
   Traits m_traits;

@@ -97,7 +97,9 @@ inline Flash_result flash_spherical_map(const Matrix& X, const Index_matrix& F, 
     const Complex tutte_corners[3] = {Complex(1, 0), std::polar(1., 2 * M_PI / 3), std::polar(1., 4 * M_PI / 3)};
     std::unique_ptr<Spd_solver> s2 = prototype.clone();
     if(!punctured_harmonic_map(graph_laplacian(F, n), F, t, tutte_corners, *s2, z) || !balance_and_lift(z))
-      throw Invalid_input("the harmonic and Tutte maps both failed: the mesh is not a valid genus-0 surface");
+      throw Algorithm_failure("the spherical conformal map failed: neither the cotangent harmonic map nor the "
+                              "Tutte embedding of the (valid) mesh could be computed (linear solver failure or "
+                              "non-finite result)");
   }
 
   // South step: quasi-conformal correction in the south chart, where the

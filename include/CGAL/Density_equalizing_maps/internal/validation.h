@@ -16,6 +16,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -175,6 +177,54 @@ inline void validate_population(const Vector& p, Eigen::Index nf, const char* wh
     if(!std::isfinite(p[k]) || !(p[k] > 0))
       throw Invalid_input(std::string("non-positive or non-finite ") + what + " at " + face_name(k) +
                           " (value " + std::to_string(p[k]) + ")");
+}
+
+/// Checks points that must lie on (or be projected radially onto) a domain
+/// centred at the origin: all finite and none at the center, where the radial
+/// projection is undefined.
+inline void validate_spherical_points(const Matrix& S, const std::string& what)
+{
+  for(Eigen::Index i = 0; i < S.rows(); ++i) {
+    if(!S.row(i).allFinite()) throw Invalid_input(what + " has non-finite coordinates at " + vertex_name(i));
+    if(S(i, 0) == 0 && S(i, 1) == 0 && S(i, 2) == 0)
+      throw Invalid_input(what + " sends " + vertex_name(i) + " to the center (0, 0, 0)");
+  }
+}
+
+/// The sane range of the radii of a target domain (ellipsoid a, b, c; torus
+/// R, r). The maps are computed in the domain's own units, independently of
+/// the scale of the input mesh, so the range does not depend on the mesh:
+///  - shape: largest / smallest radius at most `max_domain_aspect` (beyond
+///    it the stereographic and flat-torus charts lose every significant digit
+///    of the short direction);
+///  - scale: every radius within [`min_domain_radius`, `max_domain_radius`],
+///    so that areas and volumes of the domain (radius^3 at most) stay normal
+///    doubles. The scale check is invariant under scaling the input mesh.
+constexpr double max_domain_aspect = 1e6;
+constexpr double min_domain_radius = 1e-100;
+constexpr double max_domain_radius = 1e100;
+
+/// Throws `Invalid_input` unless every radius is positive, finite and in the
+/// sane range above. `what` names the radii in the message ("ellipsoid radii").
+inline void validate_domain_radii(const double* radii, int count, const std::string& what)
+{
+  std::string list;
+  for(int c = 0; c < count; ++c) {
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, "%s%.6g", c ? ", " : "", radii[c]);
+    list += buffer;
+  }
+  double lo = std::numeric_limits<double>::infinity(), hi = 0;
+  for(int c = 0; c < count; ++c) {
+    if(!std::isfinite(radii[c]) || !(radii[c] > 0))
+      throw Invalid_input(what + " must be positive and finite (got " + list + ")");
+    lo = std::min(lo, radii[c]);
+    hi = std::max(hi, radii[c]);
+  }
+  if(lo < min_domain_radius || hi > max_domain_radius)
+    throw Invalid_input(what + " out of the supported range [1e-100, 1e100] (got " + list + ")");
+  if(hi > max_domain_aspect * lo)
+    throw Invalid_input(what + " too unequal: the largest is more than 1e6 times the smallest (got " + list + ")");
 }
 
 } // namespace internal

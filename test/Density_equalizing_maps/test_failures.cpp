@@ -1,0 +1,318 @@
+// Honest failures (issue 15): the caller's mistakes throw Invalid_input, the
+// methods' own numerical failures throw Algorithm_failure (a different type,
+// not a subclass), and neither writes to the output map. Also the API gaps:
+// duplicate landmark vertices, radii out of the sane range, solver clones
+// that keep the user's settings, and mobius_area_correction's input checks.
+// Generated meshes only.
+
+#include <CGAL/Density_equalizing_maps/ellipsoidal_conformal_map.h>
+#include <CGAL/Density_equalizing_maps/ellipsoidal_density_equalizing_map.h>
+#include <CGAL/Density_equalizing_maps/spherical_conformal_map.h>
+#include <CGAL/Density_equalizing_maps/spherical_density_equalizing_map.h>
+#include <CGAL/Density_equalizing_maps/toroidal_density_equalizing_map.h>
+
+#include <CGAL/Eigen_sparse_matrix.h>
+#include <CGAL/Eigen_vector.h>
+
+#include <Eigen/IterativeLinearSolvers>
+
+#include "dem_test_meshes.h"
+
+#include <array>
+#include <limits>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+namespace DEM = CGAL::Density_equalizing_maps;
+namespace PM = DEM::parameters;
+namespace I = DEM::internal;
+using namespace dem_test;
+
+typedef Mesh::Property_map<vertex_descriptor, Point> Point_map;
+typedef std::vector<std::pair<vertex_descriptor, Point> > Landmarks;
+
+static_assert(!std::is_base_of<DEM::Invalid_input, DEM::Algorithm_failure>::value,
+              "an algorithm failure is not the caller's fault");
+static_assert(!std::is_base_of<DEM::Algorithm_failure, DEM::Invalid_input>::value, "distinct types");
+
+namespace {
+
+/// A model of SparseLinearAlgebraWithFactorTraits_d whose every factorization
+/// and solve fails: on valid input, a method that depends on a linear solve
+/// can then only fail by its own fault.
+struct Failing_solver_traits
+{
+  typedef double NT;
+  typedef CGAL::Eigen_sparse_matrix<double> Matrix;
+  typedef CGAL::Eigen_vector<double> Vector;
+  bool factor(const Matrix&, NT&) { return false; }
+  bool linear_solver(const Vector&, Vector&) { return false; }
+  bool linear_solver(const Matrix&, const Vector&, Vector&, NT&) { return false; }
+};
+
+/// A generic traits model with a setting of its own (as a user's solver would
+/// have a tolerance), to check that the adapter's clones keep it.
+struct Configured_traits
+{
+  typedef double NT;
+  typedef CGAL::Eigen_sparse_matrix<double> Matrix;
+  typedef CGAL::Eigen_vector<double> Vector;
+  double tolerance = 1e-10;
+  bool factor(const Matrix&, NT&) { return true; }
+  bool linear_solver(const Vector& b, Vector& x)
+  {
+    for(int i = 0; i < int(b.size()); ++i) x.set(i, b(i));
+    return true;
+  }
+};
+
+template <class E, class F>
+std::string expect_nothing_written(Mesh& m, Point_map out, F f, const std::string& name)
+{
+  const std::string msg = expect_throw<E>(f, name);
+  std::cout << name << ": \"" << msg << "\"" << std::endl;
+  check(untouched(m, out), name + ": the output map was written");
+  return msg;
+}
+
+void algorithm_failures_are_not_invalid_input()
+{
+  Mesh m = bumpy(2);
+  Point_map out = output_map(m, "v:out");
+  const auto failing = PM::sparse_linear_solver(Failing_solver_traits());
+  std::string msg = expect_nothing_written<DEM::Algorithm_failure>(
+    m, out, [&] { DEM::spherical_conformal_map(m, out, failing); }, "spherical conformal, failing solver");
+  check(contains(msg, "spherical conformal map failed"), "FLASH failure: the message says what failed");
+
+  msg = expect_nothing_written<DEM::Algorithm_failure>(
+    m, out, [&] { DEM::spherical_density_equalizing_map(m, out, failing); }, "SDEM, failing solver");
+  check(!msg.empty(), "SDEM: the computed initial map failed -> Algorithm_failure");
+
+  msg = expect_nothing_written<DEM::Algorithm_failure>(
+    m, out, [&] { DEM::ellipsoidal_conformal_map(m, out, failing); }, "FECM, failing solver");
+  check(!msg.empty(), "FECM: Algorithm_failure");
+
+  msg = expect_nothing_written<DEM::Algorithm_failure>(
+    m, out,
+    [&] {
+      DEM::ellipsoidal_density_equalizing_map(
+        m, out, PM::combine(failing, PM::ellipsoid_radii(std::array<double, 3>{1, 1, 1.5})));
+    },
+    "EDEM, failing solver");
+  check(!msg.empty(), "EDEM: Algorithm_failure");
+
+  Landmarks lm = {{vertex_descriptor(0), Point(1, 0, 0)}};
+  msg = expect_nothing_written<DEM::Algorithm_failure>(
+    m, out, [&] { DEM::landmark_aligned_spherical_density_equalizing_map(m, lm, out, failing); },
+    "LSDEM, failing solver");
+  check(contains(msg, "could not be factored"), "LSDEM: the message says the harmonic system failed");
+
+  Mesh t = torus(3, 1, 24, 10);
+  Point_map tout = output_map(t, "v:out");
+  msg = expect_nothing_written<DEM::Algorithm_failure>(
+    t, tout,
+    [&] {
+      DEM::toroidal_parameterization(t, tout, PM::combine(failing, PM::torus_radii(std::array<double, 2>{3, 1})));
+    },
+    "toroidal parameterization, failing solver");
+  check(contains(msg, "periodic harmonic map"), "toroidal parameterization: the message says what failed");
+
+  // The same methods with the default solver succeed on the same meshes:
+  // the failure above is the solver's, not the input's.
+  const DEM::Map_report r = DEM::spherical_conformal_map(m, out);
+  check(r.fold_overs == 0, "spherical conformal with the default solver: 0 fold-overs");
+}
+
+void user_initial_map_is_the_callers_fault()
+{
+  Mesh m = icosphere(2);
+  Point_map init = m.add_property_map<vertex_descriptor, Point>("v:init").first;
+  for(vertex_descriptor v : vertices(m)) { const Point& p = m.point(v); init[v] = Point(p.x(), -p.y(), p.z()); }
+  Point_map out = output_map(m, "v:out");
+  const std::string msg = expect_nothing_written<DEM::Invalid_input>(
+    m, out, [&] { DEM::spherical_density_equalizing_map(m, out, PM::initial_map(init)); }, "SDEM mirrored initial map");
+  check(contains(msg, "initial map is not bijective"), "SDEM: a user's folded initial map is Invalid_input");
+  init[vertex_descriptor(3)] = Point(0, 0, 0);
+  const std::string msg0 = expect_nothing_written<DEM::Invalid_input>(
+    m, out, [&] { DEM::spherical_density_equalizing_map(m, out, PM::initial_map(init)); }, "SDEM initial map at 0");
+  check(contains(msg0, "vertex 3") && contains(msg0, "center"), "SDEM: initial map at the center names vertex 3");
+}
+
+void duplicate_landmarks_are_refused()
+{
+  Mesh m = icosphere(2);
+  Point_map out = output_map(m, "v:out");
+  Landmarks lm = {{vertex_descriptor(0), Point(1, 0, 0)},
+                  {vertex_descriptor(7), Point(0, 1, 0)},
+                  {vertex_descriptor(7), Point(0, 0, 1)}};
+  std::string msg = expect_nothing_written<DEM::Invalid_input>(
+    m, out, [&] { DEM::landmark_aligned_spherical_density_equalizing_map(m, lm, out); }, "LSDEM duplicate landmark");
+  check(contains(msg, "vertex 7") && contains(msg, "more than once") && contains(msg, "landmark 2"),
+        "LSDEM: the duplicate landmark message names vertex 7 and landmark 2");
+  lm[2].second = lm[1].second; // same target twice: still refused (it would count twice)
+  msg = expect_nothing_written<DEM::Invalid_input>(
+    m, out, [&] { DEM::landmark_aligned_spherical_density_equalizing_map(m, lm, out); }, "LSDEM repeated landmark");
+  check(contains(msg, "vertex 7"), "LSDEM: a repeated identical landmark is refused too");
+
+  // FEQCM, for completeness (it refused them before)
+  const std::array<double, 3> radii = DEM::bounding_box_ellipsoid_radii(m);
+  Landmarks lq = {{vertex_descriptor(5), Point(0, 0, radii[2])}, {vertex_descriptor(5), Point(0, 0, -radii[2])}};
+  msg = expect_nothing_written<DEM::Invalid_input>(
+    m, out, [&] { DEM::ellipsoidal_quasiconformal_map(m, lq, out); }, "FEQCM duplicate landmark");
+  check(contains(msg, "vertex 5"), "FEQCM: duplicate landmark names vertex 5");
+}
+
+void radii_out_of_range_are_refused()
+{
+  Mesh m = bumpy(2);
+  Point_map out = output_map(m, "v:out");
+  auto ellipsoid = [&](std::array<double, 3> r) {
+    return expect_nothing_written<DEM::Invalid_input>(
+      m, out, [&] { DEM::ellipsoidal_conformal_map(m, out, PM::ellipsoid_radii(r)); },
+      "FECM radii out of range");
+  };
+  check(contains(ellipsoid({1e300, 1e300, 1e300}), "range"), "radii 1e300: out of the supported range");
+  check(contains(ellipsoid({1e-200, 1e-200, 1e-200}), "range"), "radii 1e-200: out of the supported range");
+  check(contains(ellipsoid({1, 1, 2e6}), "too unequal"), "radii 1 1 2e6: too unequal");
+  check(contains(ellipsoid({1, -1, 1}), "positive"), "negative radius refused");
+  std::string msg = expect_nothing_written<DEM::Invalid_input>(
+    m, out,
+    [&] { DEM::ellipsoidal_density_equalizing_map(m, out, PM::ellipsoid_radii(std::array<double, 3>{1e120, 1, 1})); },
+    "EDEM radii 1e120");
+  check(contains(msg, "ellipsoid radii"), "EDEM: radii out of range refused");
+
+  // In range: the extremes of the range are accepted (the check is on the
+  // domain, whatever the scale of the mesh).
+  bool accepted = true;
+  try { I::check_radii(Eigen::Vector3d(1e-100, 1e-100, 0.9e-94)); I::check_radii(Eigen::Vector3d(1e100, 1e100, 1e95)); }
+  catch(const DEM::Invalid_input& e) { accepted = false; std::cerr << e.what() << std::endl; }
+  check(accepted, "radii at the ends of the range are accepted");
+  // The default radii do not depend on the mesh scale.
+  Mesh big = bumpy(2), small = bumpy(2);
+  for(vertex_descriptor v : vertices(big)) big.point(v) = Point(1e8 * big.point(v).x(), 1e8 * big.point(v).y(), 1e8 * big.point(v).z());
+  for(vertex_descriptor v : vertices(small)) small.point(v) = Point(1e-8 * small.point(v).x(), 1e-8 * small.point(v).y(), 1e-8 * small.point(v).z());
+  const std::array<double, 3> rb = DEM::bounding_box_ellipsoid_radii(big), rs = DEM::bounding_box_ellipsoid_radii(small);
+  check_close(rb[2], rs[2], 1e-9, "default radii are scale-invariant");
+
+  // Torus radii
+  Mesh t = torus(3, 1, 24, 10);
+  Point_map tout = output_map(t, "v:out");
+  auto torus_case = [&](double R, double r) {
+    return expect_nothing_written<DEM::Invalid_input>(
+      t, tout, [&] { DEM::toroidal_parameterization(t, tout, PM::torus_radii(std::array<double, 2>{R, r})); },
+      "torus radii out of range");
+  };
+  check(contains(torus_case(1e300, 1), "range"), "torus R = 1e300 refused");
+  check(contains(torus_case(2e6, 1), "too unequal"), "torus R/r = 2e6 refused");
+  check(contains(torus_case(1, 2), "R > r"), "torus R < r refused");
+}
+
+void solver_clones_keep_the_settings()
+{
+  typedef Eigen::ConjugateGradient<I::Sparse_matrix, Eigen::Lower | Eigen::Upper> Cg;
+  typedef CGAL::Eigen_solver_traits<Cg> Cg_traits;
+  Cg_traits cg;
+  cg.solver().setTolerance(1e-3);
+  cg.solver().setMaxIterations(17);
+  const std::unique_ptr<I::Spd_solver> original = I::make_spd_solver(cg);
+  const std::unique_ptr<I::Spd_solver> copy = original->clone();
+  const auto& cloned = dynamic_cast<const I::Eigen_traits_spd_solver<Cg_traits>&>(*copy).traits();
+  Cg& cloned_solver = const_cast<Cg_traits&>(cloned).solver();
+  check(cloned_solver.tolerance() == 1e-3, "CG clone keeps the tolerance 1e-3 (got " +
+                                             std::to_string(cloned_solver.tolerance()) + ")");
+  check(I::Eigen_solver_protected_settings<Cg>::max_iterations(cloned_solver) == 17,
+        "CG clone keeps the iteration limit 17");
+  check(&cloned_solver != &cg.solver(), "CG clone owns its solver (its own factorization)");
+  // an unset iteration limit stays unset (Eigen's default: twice the size)
+  Cg_traits plain;
+  const auto plain_copy = I::make_spd_solver(plain)->clone();
+  Cg& plain_solver =
+    const_cast<Cg_traits&>(dynamic_cast<const I::Eigen_traits_spd_solver<Cg_traits>&>(*plain_copy).traits()).solver();
+  check(I::Eigen_solver_protected_settings<Cg>::max_iterations(plain_solver) < 0, "unset iteration limit stays unset");
+
+  // Behaviour: a clone with a 1-iteration limit solves a system only roughly,
+  // exactly like the original; a default CG clone would solve it to 1e-16.
+  I::Sparse_matrix A(30, 30);
+  std::vector<Eigen::Triplet<double> > entries;
+  for(int i = 0; i < 30; ++i) {
+    entries.emplace_back(i, i, 2.5);
+    if(i > 0) { entries.emplace_back(i, i - 1, -1); entries.emplace_back(i - 1, i, -1); }
+  }
+  A.setFromTriplets(entries.begin(), entries.end());
+  I::Matrix B = I::Matrix::Ones(30, 1), X;
+  Cg_traits rough;
+  rough.solver().setMaxIterations(1);
+  const auto rough_clone = I::make_spd_solver(rough)->clone();
+  rough_clone->factor(A);
+  rough_clone->solve(B, X);
+  const double residual = (A * X - B).norm() / B.norm();
+  check(residual > 1e-3, "a clone of a 1-iteration CG stops after one iteration (relative residual " +
+                           std::to_string(residual) + ")");
+
+  typedef CGAL::Eigen_solver_traits<Eigen::SimplicialLDLT<I::Sparse_matrix> > Ldlt_traits;
+  Ldlt_traits shifted;
+  shifted.solver().setShift(0.5, 2.);
+  const auto ldlt_copy = I::make_spd_solver(shifted)->clone();
+  double offset = 0, scale = 0;
+  I::Eigen_solver_protected_settings<Eigen::SimplicialLDLT<I::Sparse_matrix> >::simplicial_shift(
+    const_cast<Ldlt_traits&>(dynamic_cast<const I::Eigen_traits_spd_solver<Ldlt_traits>&>(*ldlt_copy).traits()).solver(),
+    offset, scale);
+  check(offset == 0.5 && scale == 2., "LDLT clone keeps the shift (0.5, 2)");
+
+  Configured_traits configured;
+  configured.tolerance = 1e-3;
+  const auto generic_copy = I::make_spd_solver(configured)->clone();
+  check(dynamic_cast<const I::Generic_traits_spd_solver<Configured_traits>&>(*generic_copy).traits().tolerance == 1e-3,
+        "generic traits clone keeps the user's setting");
+
+  // End to end: a configured CG solver is usable by a method that clones it.
+  Mesh m = icosphere(2);
+  Point_map out = output_map(m, "v:out");
+  Cg_traits good;
+  good.solver().setTolerance(1e-12);
+  const DEM::Map_report r = DEM::spherical_conformal_map(m, out, PM::sparse_linear_solver(good));
+  check(r.fold_overs == 0, "spherical conformal map with a configured CG solver: 0 fold-overs");
+}
+
+void mobius_validates_its_input()
+{
+  Mesh m = bumpy(2);
+  Point_map sphere = m.add_property_map<vertex_descriptor, Point>("v:sphere").first;
+  const DEM::Map_report r0 = DEM::spherical_conformal_map(m, sphere);
+  check(r0.fold_overs == 0, "conformal map for the Moebius test: 0 fold-overs");
+  Point_map out = output_map(m, "v:out");
+
+  Point_map bad = m.add_property_map<vertex_descriptor, Point>("v:bad").first;
+  for(vertex_descriptor v : vertices(m)) bad[v] = sphere[v];
+  bad[vertex_descriptor(4)] = Point(0, 0, 0);
+  std::string msg = expect_nothing_written<DEM::Invalid_input>(
+    m, out, [&] { DEM::mobius_area_correction(m, bad, out); }, "Moebius: point at the origin");
+  check(contains(msg, "vertex 4") && contains(msg, "center"), "Moebius: the point at the origin is named");
+
+  bad[vertex_descriptor(4)] = Point(std::numeric_limits<double>::quiet_NaN(), 0, 0);
+  msg = expect_nothing_written<DEM::Invalid_input>(
+    m, out, [&] { DEM::mobius_area_correction(m, bad, out); }, "Moebius: NaN point");
+  check(contains(msg, "vertex 4") && contains(msg, "non-finite"), "Moebius: the non-finite point is named");
+
+  for(vertex_descriptor v : vertices(m)) bad[v] = Point(sphere[v].x(), -sphere[v].y(), sphere[v].z());
+  msg = expect_nothing_written<DEM::Invalid_input>(
+    m, out, [&] { DEM::mobius_area_correction(m, bad, out); }, "Moebius: mirrored map");
+  check(contains(msg, "not bijective"), "Moebius: a folded input map is refused");
+
+  const DEM::Map_report r = DEM::mobius_area_correction(m, sphere, out);
+  check(r.fold_overs == 0 && max_sphere_deviation(m, out) < 1e-12, "Moebius on a valid map: 0 fold-overs, on the sphere");
+}
+
+} // namespace
+
+int main()
+{
+  algorithm_failures_are_not_invalid_input();
+  user_initial_map_is_the_callers_fault();
+  duplicate_landmarks_are_refused();
+  radii_out_of_range_are_refused();
+  solver_clones_keep_the_settings();
+  mobius_validates_its_input();
+  return finish("test_failures");
+}
