@@ -231,6 +231,8 @@ Map_report ellipsoidal_conformal_map(const TriangleMesh& tm, VertexPointOutMap e
   const internal::Ellipsoidal_mapper mapper(a.X, a.F, poles, *solver);
   Map_report report;
   report.used_tutte_fallback = mapper.chart().tutte;
+  report.add_fallback(mapper.chart().fallback);
+  report.repairs = mapper.chart().repairs;
   internal::Matrix f;
   if(optimize) {
     internal::Radii_optimization opt = internal::optimize_ellipsoid_radii(mapper, radii, dilate);
@@ -387,6 +389,8 @@ Map_report ellipsoidal_quasiconformal_map(const TriangleMesh& tm, const Landmark
 
   Map_report report;
   report.used_tutte_fallback = mapper.chart().tutte;
+  report.add_fallback(mapper.chart().fallback);
+  report.repairs = mapper.chart().repairs;
   report.radii = {radii[0], radii[1], radii[2]};
   report.iterations = res.passes;
   report.termination = res.planar_bijective ? Termination::CONVERGED : Termination::MAXIMUM_ITERATIONS;

@@ -373,6 +373,8 @@ struct Ellipsoidal_chart
   Eigen::Index north_face = -1, south_face = -1;
   std::array<Eigen::Index, 3> poles = {-1, -1, -1};
   bool tutte = false;
+  std::string fallback;     // FLASH's (Flash_result::fallback)
+  std::size_t repairs = 0;
 };
 
 inline double perimeter(Complex a, Complex b, Complex c) { return std::abs(a - b) + std::abs(b - c) + std::abs(c - a); }
@@ -385,6 +387,8 @@ inline Ellipsoidal_chart ellipsoidal_chart(const Matrix& X, const Index_matrix& 
   Ellipsoidal_chart ch;
   ch.poles = poles;
   ch.tutte = flash.tutte;
+  ch.fallback = flash.fallback;
+  ch.repairs = flash.repairs;
   ch.north_face = pole_face(X, F, poles[0], -1);
   ch.south_face = pole_face(X, F, poles[1], ch.north_face);
   if(ch.south_face < 0) ch.south_face = pole_face(X, F, poles[1], -1);

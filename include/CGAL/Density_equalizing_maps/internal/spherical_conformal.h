@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <numeric>
+#include <string>
 
 namespace CGAL {
 namespace Density_equalizing_maps {
@@ -26,6 +27,8 @@ struct Flash_result
   Complex_vector south_w;   // the south-chart coordinates after the LBS step (S = (P^S)^{-1}(w))
   Eigen::Index north_face = 0;
   bool tutte = false;
+  std::string fallback;     // empty, or which fallback was taken (Map_report::fallback)
+  std::size_t repairs = 0;  // Beltrami repairs of the fallback start
 };
 
 /// Harmonic map of the mesh punctured at face `t` onto the plane: the three
@@ -94,6 +97,7 @@ inline Flash_result flash_spherical_map(const Matrix& X, const Index_matrix& F, 
   };
   if(!ok || !balance_and_lift(z)) {
     res.tutte = true;
+    res.fallback = "tutte embedding (the cotangent harmonic map could not be computed)";
     const Complex tutte_corners[3] = {Complex(1, 0), std::polar(1., 2 * M_PI / 3), std::polar(1., 4 * M_PI / 3)};
     std::unique_ptr<Spd_solver> s2 = prototype.clone();
     if(!punctured_harmonic_map(graph_laplacian(F, n), F, t, tutte_corners, *s2, z) || !balance_and_lift(z))
@@ -146,8 +150,12 @@ inline Flash_result flash_spherical_map(const Matrix& X, const Index_matrix& F, 
       Ellipsoid_domain sphere(F, tutte, Eigen::Vector3d::Ones(), 0.1, prototype);
       Step_statistics stats;
       Matrix repaired;
-      res.S = sphere.advance(tutte, res.S - tutte, 1., repaired, stats) ? repaired : tutte;
+      const bool moved = sphere.advance(tutte, res.S - tutte, 1., repaired, stats);
+      res.S = moved ? repaired : tutte;
       res.tutte = true;
+      res.repairs += stats.repairs;
+      res.fallback = moved ? "tutte embedding repaired towards the harmonic map (the harmonic map folded)"
+                           : "tutte embedding (the harmonic map folded and could not be repaired)";
       for(Eigen::Index i = 0; i < n; ++i) res.south_w[i] = south_stereographic(row_vector3(res.S, i));
     }
   }
