@@ -252,6 +252,8 @@ Map_report ellipsoidal_conformal_map(const TriangleMesh& tm, VertexPointOutMap e
   internal::repair_folded_ellipsoidal_map(mapper.flash(), a.F, radii, *solver, f, report);
   report.radii = {radii[0], radii[1], radii[2]};
   report.fold_overs = internal::count_inverted_faces_about_center(f, a.F);
+  if(report.fold_overs > 0)
+    report.message += (report.message.empty() ? "" : "; ") + internal::crowding_note(a.X, a.F, f);
   internal::write_points(a, f, ellipsoid_map);
   return report;
 }

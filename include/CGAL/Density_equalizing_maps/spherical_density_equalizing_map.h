@@ -41,7 +41,7 @@ Matrix initial_spherical_map(const Mesh_arrays<TriangleMesh>& a, const NamedPara
   const std::size_t folds = count_inverted_faces_about_center(S, a.F);
   if(folds > 0)
     throw Invalid_input("the initial spherical map is not bijective: " + std::to_string(folds) +
-                        " fold-overs (exact count)");
+                        " fold-overs (exact count); " + crowding_note(a.X, a.F, S));
   return S;
 }
 

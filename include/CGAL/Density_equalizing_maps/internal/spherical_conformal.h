@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <numeric>
+#include <sstream>
 #include <string>
 
 namespace CGAL {
@@ -160,6 +161,25 @@ inline Flash_result flash_spherical_map(const Matrix& X, const Index_matrix& F, 
     }
   }
   return res;
+}
+
+/// Why a conformal map onto the sphere or an ellipsoid folded, for the
+/// report: the spread of the (normalized) image-to-input area ratios. A
+/// conformal map of a long tube crowds exponentially with its length (a 100:1
+/// capsule needs ratios near e^-200): past about 1e-14 the faces of the
+/// crowded end are below the rounding of the coordinates and fold.
+inline std::string crowding_note(const Matrix& X, const Index_matrix& F, const Matrix& Y)
+{
+  const Vector a = face_areas(X, F), b = face_areas(Y, F);
+  const double sa = a.sum(), sb = b.sum();
+  double smallest = std::numeric_limits<double>::infinity();
+  for(Eigen::Index k = 0; k < F.rows(); ++k) smallest = std::min(smallest, (b[k] / sb) / (a[k] / sa));
+  std::ostringstream o;
+  o << "smallest image-to-input area ratio " << smallest;
+  if(!(smallest > 1e-12))
+    o << ": the conformal map crowds faces below the precision of double (an elongated or strongly "
+         "protruding surface: its conformal image shrinks exponentially along the protrusion)";
+  return o.str();
 }
 
 /// Moebius map f(z) = e^s (z - w0) / (1 + conj(w0) z): a rotation of the
