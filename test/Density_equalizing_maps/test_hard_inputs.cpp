@@ -21,6 +21,10 @@
 
 #include "dem_test_meshes.h"
 
+#include <sys/wait.h>
+
+#include <cstdlib>
+
 namespace DEM = CGAL::Density_equalizing_maps;
 namespace PM = CGAL::Density_equalizing_maps::parameters;
 using namespace dem_test;
@@ -287,6 +291,65 @@ void test_honest_non_convergence()
   check(r.final_error < r.initial_error, "SDEM, 3 iterations: the stopping quantity decreased");
 }
 
+/// The dem tool tells a fallback and a non-converged run: the summary line
+/// and the metrics JSON carry `fallback` and `repairs`, stderr has a warning.
+std::string read_text(const std::string& file)
+{
+  std::ifstream in(file);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+int run_dem(const std::string& args, std::string& out, std::string& err)
+{
+  const std::string cmd = std::string("\"") + DEM_CLI + "\" " + args + " > hard_stdout.txt 2> hard_stderr.txt";
+  const int status = std::system(cmd.c_str());
+  out = read_text("hard_stdout.txt");
+  err = read_text("hard_stderr.txt");
+  return (status != -1 && WIFEXITED(status)) ? WEXITSTATUS(status) : -1;
+}
+
+void write_off(const Arrays& a, const std::string& file)
+{
+  std::ofstream o(file);
+  o.precision(17);
+  o << "OFF\n" << a.X.rows() << " " << a.F.rows() << " 0\n";
+  for(Eigen::Index i = 0; i < a.X.rows(); ++i) o << a.X(i, 0) << " " << a.X(i, 1) << " " << a.X(i, 2) << "\n";
+  for(Eigen::Index k = 0; k < a.F.rows(); ++k) o << "3 " << a.F(k, 0) << " " << a.F(k, 1) << " " << a.F(k, 2) << "\n";
+}
+
+void test_cli_honesty()
+{
+  std::string out, err;
+  write_off(tetrahedron_arrays(), "hard_tetra.off");
+  int code = run_dem("ellipsoidal-conformal hard_tetra.off --radii 1 1 1 --metrics hard_tetra.json", out, err);
+  const std::string json = read_text("hard_tetra.json");
+  check(code == 0, "dem FECM tetrahedron: exit 0 (fold-free after the fallback), got " + std::to_string(code));
+  check(contains(json, "\"fallback\": \"") && contains(json, "\"repairs\": "),
+        "dem FECM tetrahedron: metrics JSON names the fallback and the repairs");
+  check(contains(out, "fallback: "), "dem FECM tetrahedron: the summary line names the fallback");
+  check(contains(err, "warning") && contains(err, "fallback"), "dem FECM tetrahedron: a warning on stderr");
+
+  write_off(icosphere_arrays(2), "hard_sphere.off");
+  code = run_dem("sdem hard_sphere.off --metrics hard_sphere.json", out, err);
+  check(contains(read_text("hard_sphere.json"), "\"fallback\": null"), "dem SDEM: fallback null when none");
+  check(!contains(err, "warning"), "dem SDEM on a sphere: no warning");
+  // a run cut short: converged false in the JSON, and a warning on stderr
+  Mesh m = to_mesh(icosphere_arrays(2));
+  Face_map p = population(m, 1e4, false);
+  {
+    std::ofstream o("hard_sphere_population.txt");
+    o.precision(17);
+    for(auto f : m.faces()) o << p[f] << "\n";
+  }
+  code = run_dem("sdem hard_sphere.off --population hard_sphere_population.txt --max-iterations 3 --metrics "
+                 "hard_sphere.json", out, err);
+  const std::string j2 = read_text("hard_sphere.json");
+  check(contains(j2, "\"converged\": false"), "dem SDEM cut short: converged false");
+  check(code == 4 || contains(err, "did not converge"), "dem SDEM cut short: exit 4 or a warning on stderr (" + err + ")");
+}
+
 // ---------------------------------------------------------------------------
 // long (label hard)
 
@@ -389,6 +452,7 @@ int main(int argc, char** argv)
     test_scale();
     test_sliver_conformal();
     test_honest_non_convergence();
+    test_cli_honesty();
   } else if(mode == "long") {
     test_capsules();
     test_extreme_populations();
