@@ -129,6 +129,15 @@ int map_command(const std::vector<std::string>& args)
   std::cout << summary_line(m) << std::endl;
 
   const bool failed = run.report.fold_overs > 0 || run.report.termination == DEM::Termination::STALLED;
+  // a result the user must not take for the method's usual one says so on stderr
+  if(!run.report.fallback.empty())
+    std::cerr << "dem: warning: " << method_name(opt.method) << " used a fallback: " << run.report.fallback
+              << " (" << run.report.repairs << " repairs)\n";
+  if(!failed && !run.report.converged())
+    std::cerr << "dem: warning: " << method_name(opt.method) << " did not converge ("
+              << DEM::to_string(run.report.termination) << ", stopping quantity " << run.report.initial_error << " -> "
+              << run.report.final_error << ")" << (run.report.message.empty() ? "" : ": " + run.report.message)
+              << "; the output is the last bijective map\n";
   if(failed) {
     std::cerr << "dem: " << method_name(opt.method) << " failed: " << failure_description(run.report)
               << (run.report.message.empty() ? "" : " (" + run.report.message + ")") << "; "

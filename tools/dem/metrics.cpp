@@ -28,7 +28,9 @@ Metrics compute_metrics(const std::string& method, const CGAL::Density_equalizin
                                double seconds, const Metric_input& in)
 {
   using CGAL::Density_equalizing_maps::Termination;
-  const DI::Matrix& X = *in.X;
+  // the input at unit size (a power of two, as the library does): lengths and
+  // areas of coordinates near 1e+-100 overflow; every metric is scale-invariant
+  const DI::Matrix X = *in.X * DI::unit_scale(*in.X);
   const DI::Index_matrix& F = *in.F;
   const DI::Matrix& Y = *in.Y;
   Metrics m;
@@ -40,6 +42,8 @@ Metrics compute_metrics(const std::string& method, const CGAL::Density_equalizin
   m.converged = report.converged();
   m.termination = CGAL::Density_equalizing_maps::to_string(report.termination);
   m.fold_overs = report.fold_overs;
+  m.fallback = report.fallback;
+  m.repairs = report.repairs;
 
   const DI::Mean_sd mu = DI::mean_sd(DI::beltrami_magnitude_3d(X, Y, F));
   m.mean_abs_mu = mu.mean;
@@ -49,7 +53,7 @@ Metrics compute_metrics(const std::string& method, const CGAL::Density_equalizin
   m.mean_abs_darea = da.mean;
   m.sd_abs_darea = da.sd;
 
-  const auto initial = density_variances(in.initial ? *in.initial : X, F, *in.population);
+  const auto initial = density_variances(in.initial && in.initial != in.X ? *in.initial : X, F, *in.population);
   const auto final = density_variances(Y, F, *in.population);
   m.density_var_initial = initial.first;
   m.face_density_var_initial = initial.second;
@@ -107,6 +111,8 @@ std::string metrics_json(const Metrics& m)
     << "  \"face_density_var_initial\": " << json_number(m.face_density_var_initial) << ",\n"
     << "  \"face_density_var_final\": " << json_number(m.face_density_var_final) << ",\n"
     << "  \"landmark_error\": " << json_number(m.landmark_error) << ",\n"
+    << "  \"fallback\": " << (m.fallback.empty() ? std::string("null") : json_string(m.fallback)) << ",\n"
+    << "  \"repairs\": " << m.repairs << ",\n"
     << "  \"radii\": ";
   if(m.radii.empty()) o << "null";
   else {
@@ -147,6 +153,8 @@ std::string summary_line(const Metrics& m)
     s += ", radii";
     for(double r : m.radii) { std::snprintf(buf, sizeof buf, " %.5g", r); s += buf; }
   }
+  s += ", repairs " + std::to_string(m.repairs);
+  if(!m.fallback.empty()) s += ", fallback: " + m.fallback;
   return s;
 }
 

@@ -36,6 +36,8 @@ struct Metrics
   double face_density_var_initial = NA, face_density_var_final = NA;
   double landmark_error = NA;
   std::vector<double> radii;     // empty = null
+  std::string fallback;          // Map_report::fallback; empty = null
+  std::size_t repairs = 0;       // Map_report::repairs
   std::string termination;       // for the summary line
   /// Keys a subcommand adds to the contract's (remesh, register, cartogram, ...):
   /// name and JSON value text, written after the contract's keys in this order.

@@ -130,7 +130,8 @@ void read_sidecars(const Options& opt, Problem& pb)
     pb.population = Eigen::Map<const DI::Vector>(p.data(), Eigen::Index(p.size()));
     pb.explicit_population = true;
   } else {
-    pb.population = DI::face_areas(pb.X, pb.F);
+    // at unit size (a power of two): areas of coordinates near 1e+-100 overflow
+    pb.population = DI::face_areas(pb.X * DI::unit_scale(pb.X), pb.F);
   }
   pb.population_map = pb.mesh.add_property_map<Face, double>("f:dem_population", 0.).first;
   for(Face f : pb.mesh.faces()) pb.population_map[f] = pb.population[f.idx()];

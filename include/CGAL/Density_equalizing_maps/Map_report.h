@@ -88,7 +88,8 @@ struct Map_report
   double final_error = -1;
   /// initial value of the stopping quantity
   double initial_error = -1;
-  /// number of Linear Beltrami Solver repairs performed
+  /// number of Linear Beltrami Solver repairs performed (fold-over repairs of
+  /// the flow, and those that moved a fallback start towards the conformal map)
   std::size_t repairs = 0;
   /// number of times the time step was halved during repairs
   std::size_t step_halvings = 0;
@@ -98,8 +99,22 @@ struct Map_report
   std::vector<double> radii;
   /// true when the Tutte fallback replaced the cotangent harmonic map
   bool used_tutte_fallback = false;
+  /// Which fallback replaced a step of the method, empty if none: e.g.
+  /// "tutte embedding (the harmonic map failed)" or "tutte embedding repaired
+  /// towards the harmonic map (the harmonic map folded)". Several fallbacks
+  /// are separated by "; ". A non-empty value means the output is valid
+  /// (`fold_overs` says whether it is bijective) but may be of lower quality
+  /// than the method's usual result.
+  std::string fallback;
   /// a human-readable note on anything unusual (e.g. why a run stalled)
   std::string message;
+
+  /// appends a fallback description to `fallback`
+  void add_fallback(const std::string& what)
+  {
+    if(what.empty()) return;
+    fallback += (fallback.empty() ? "" : "; ") + what;
+  }
 
   /// \returns `true` when the output is a bijective map (no fold-over)
   bool is_bijective() const { return fold_overs == 0; }

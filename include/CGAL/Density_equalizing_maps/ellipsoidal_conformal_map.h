@@ -243,6 +243,8 @@ Map_report ellipsoidal_conformal_map(const TriangleMesh& tm, VertexPointOutMap e
   const internal::Ellipsoidal_mapper mapper(a.X, a.F, poles, *solver);
   Map_report report;
   report.used_tutte_fallback = mapper.chart().tutte;
+  report.add_fallback(mapper.chart().fallback);
+  report.repairs = mapper.chart().repairs;
   internal::Matrix f;
   if(optimize) {
     internal::Radii_optimization opt = internal::optimize_ellipsoid_radii(mapper, radii, dilate);
@@ -259,8 +261,11 @@ Map_report ellipsoidal_conformal_map(const TriangleMesh& tm, VertexPointOutMap e
   } else {
     f = internal::evaluate_ellipsoidal_conformal(mapper, radii, internal::face_areas(a.X, a.F), dilate).f;
   }
+  internal::repair_folded_ellipsoidal_map(mapper.flash(), a.F, radii, *solver, f, report);
   report.radii = {radii[0], radii[1], radii[2]};
   report.fold_overs = internal::count_inverted_faces_about_center(f, a.F);
+  if(report.fold_overs > 0)
+    report.message += (report.message.empty() ? "" : "; ") + internal::crowding_note(a.X, a.F, f);
   internal::write_points(a, f, ellipsoid_map);
   return report;
 }
@@ -402,11 +407,13 @@ Map_report ellipsoidal_quasiconformal_map(const TriangleMesh& tm, const Landmark
   double t = 1;
   if(dilate) t = internal::evaluate_ellipsoidal_conformal(mapper, radii, internal::face_areas(a.X, a.F), true, 0, 3, &psi).dilation;
   else psi = mapper.conformal_correction(radii);
-  const internal::Quasiconformal_result res =
-    internal::ellipsoidal_quasiconformal(mapper, psi, t, idx, targets, lambda);
+  internal::Quasiconformal_result res = internal::ellipsoidal_quasiconformal(mapper, psi, t, idx, targets, lambda);
 
   Map_report report;
   report.used_tutte_fallback = mapper.chart().tutte;
+  report.add_fallback(mapper.chart().fallback);
+  report.repairs = mapper.chart().repairs;
+  internal::repair_folded_ellipsoidal_map(mapper.flash(), a.F, radii, *solver, res.f, report);
   report.radii = {radii[0], radii[1], radii[2]};
   report.iterations = res.passes;
   report.termination = res.planar_bijective ? Termination::CONVERGED : Termination::MAXIMUM_ITERATIONS;

@@ -37,7 +37,7 @@ constexpr double on_ellipsoid_tolerance = 1e-3;
 template <class TriangleMesh, class NamedParameters>
 Matrix initial_ellipsoidal_map(const TriangleMesh& tm, const Mesh_arrays<TriangleMesh>& a,
                                const Eigen::Vector3d& radii, const Vector& population, const NamedParameters& np,
-                               const Spd_solver& solver, std::string& note)
+                               const Spd_solver& solver, std::string& note, Map_report& fallbacks)
 {
   using CGAL::parameters::get_parameter;
   using CGAL::parameters::is_default_parameter;
@@ -52,8 +52,8 @@ Matrix initial_ellipsoidal_map(const TriangleMesh& tm, const Mesh_arrays<Triangl
                           " fold-overs (exact count)");
     return x;
   } else {
-    if(max_ellipsoid_deviation(a.X, radii) <= on_ellipsoid_tolerance) {
-      x = a.X;
+    if(max_ellipsoid_deviation(a.input_positions(), radii) <= on_ellipsoid_tolerance) {
+      x = a.input_positions(); // the radii are in the input's units
       project_to_ellipsoid(x, radii);
       if(count_inverted_faces_about_center(x, a.F) == 0) {
         note = "the input lies on the ellipsoid: started from it. ";
@@ -64,18 +64,26 @@ Matrix initial_ellipsoidal_map(const TriangleMesh& tm, const Mesh_arrays<Triangl
       const Vector area = face_areas(y, a.F);
       return relative_sd(densities(population, area, face_to_vertex(area, a.F, y.rows())).vertex);
     };
-    const Matrix scaled_sphere = Ellipsoid_domain::from_unit_sphere(
-      mobius_area_correction(a.X, a.F, flash_spherical_map(a.X, a.F, solver).S), radii);
+    const Flash_result flash = flash_spherical_map(a.X, a.F, solver);
+    const Matrix scaled_sphere =
+      Ellipsoid_domain::from_unit_sphere(mobius_area_correction(a.X, a.F, flash.S), radii);
     typedef CGAL::Exact_predicates_inexact_constructions_kernel::Point_3 Point;
     auto vim = CGAL::get_initialized_vertex_index_map(tm, np);
     boost::vector_property_map<Point, decltype(vim)> fecm(a.vertices.size(), vim);
     const std::array<double, 3> r = {radii[0], radii[1], radii[2]};
-    ellipsoidal_conformal_map(tm, fecm, parameters::combine(np, parameters::ellipsoid_radii(r)));
+    const Map_report conformal =
+      ellipsoidal_conformal_map(tm, fecm, parameters::combine(np, parameters::ellipsoid_radii(r)));
     x = read_points(a, fecm);
     project_to_ellipsoid(x, radii);
+    // both candidates start from the same FLASH map: one fallback to report
+    fallbacks.used_tutte_fallback = flash.tutte;
+    fallbacks.add_fallback(flash.fallback.empty() ? "" : "initial map: " + flash.fallback);
     if(x.allFinite() && count_inverted_faces_about_center(x, a.F) == 0 &&
-       density_error(x) <= density_error(scaled_sphere))
+       density_error(x) <= density_error(scaled_sphere)) {
+      fallbacks.repairs += conformal.repairs;
       return x;
+    }
+    fallbacks.repairs += flash.repairs;
     note = "started from the scaled spherical conformal map (closer to uniform density than the ellipsoidal "
            "conformal map). ";
     return scaled_sphere;
@@ -115,12 +123,12 @@ Map_report ellipsoidal_density_equalization(const TriangleMesh& tm, VertexPointO
   const auto diffusion_solver = diffusion_solver_from_parameters(np);
 
   std::string note;
-  Matrix x = initial_ellipsoidal_map(tm, a, radii, population, np, *solver, note);
+  Map_report report;
+  Matrix x = initial_ellipsoidal_map(tm, a, radii, population, np, *solver, note, report);
   Ellipsoid_domain ellipsoid(a.F, x, radii, truncation, *solver);
   auto flow = make_flow(a.F, population, x, options, *diffusion_solver);
   const Engine_result r = run_density_equalization(ellipsoid, flow, x, population, options, *diffusion_solver);
 
-  Map_report report;
   fill_report(r, report);
   report.message = note + report.message;
   report.fold_overs = ellipsoid.fold_overs(x);
@@ -167,7 +175,8 @@ Map_report ellipsoidal_density_equalizing_initial_map(const TriangleMesh& tm, Ve
   const internal::Vector population = internal::population_from_parameters(a, np);
   const auto solver = internal::solver_from_parameters(np);
   Map_report report;
-  const internal::Matrix x = internal::initial_ellipsoidal_map(tm, a, radii, population, np, *solver, report.message);
+  const internal::Matrix x =
+    internal::initial_ellipsoidal_map(tm, a, radii, population, np, *solver, report.message, report);
   if(report.message.empty()) report.message = "started from the ellipsoidal conformal map. ";
   report.termination = Termination::CONVERGED;
   report.fold_overs = internal::count_inverted_faces_about_center(x, a.F);

@@ -76,7 +76,9 @@ Mesh_arrays<TriangleMesh> measure_arrays(const TriangleMesh& tm, const NamedPara
   using CGAL::parameters::get_parameter;
   auto vpm = choose_parameter(get_parameter(np, internal_np::vertex_point), get_const_property_map(vertex_point, tm));
   auto vim = CGAL::get_initialized_vertex_index_map(tm, np);
-  return to_arrays(tm, vpm, vim);
+  Mesh_arrays<TriangleMesh> a = to_arrays(tm, vpm, vim);
+  normalize_scale(a); // the measures are scale-invariant; lengths near 1e+-100 would overflow
+  return a;
 }
 
 /// Image positions as an n x 3 matrix; 2D points get z = 0, so the area and

@@ -72,7 +72,10 @@ Map_report spherical_conformal_map(const TriangleMesh& tm, VertexPointOutMap sph
     S = internal::mobius_area_correction(a.X, a.F, S);
   Map_report report;
   report.used_tutte_fallback = flash.tutte;
+  report.add_fallback(flash.fallback);
+  report.repairs = flash.repairs;
   report.fold_overs = internal::count_inverted_faces_about_center(S, a.F);
+  if(report.fold_overs > 0) report.message = internal::crowding_note(a.X, a.F, S);
   internal::write_points(a, S, sphere_map);
   return report;
 }

@@ -22,7 +22,8 @@ namespace internal {
 /// in exact arithmetic: if its exact fold-over count is not 0 the computation
 /// failed (`Algorithm_failure`), the input is not at fault.
 template <class TriangleMesh, class NamedParameters>
-Matrix initial_spherical_map(const Mesh_arrays<TriangleMesh>& a, const NamedParameters& np, const Spd_solver& solver)
+Matrix initial_spherical_map(const Mesh_arrays<TriangleMesh>& a, const NamedParameters& np, const Spd_solver& solver,
+                             Map_report& report)
 {
   using CGAL::parameters::get_parameter;
   using CGAL::parameters::is_default_parameter;
@@ -35,11 +36,16 @@ Matrix initial_spherical_map(const Mesh_arrays<TriangleMesh>& a, const NamedPara
     if(folds > 0)
       throw Invalid_input("the initial map is not bijective: " + std::to_string(folds) + " fold-overs (exact count)");
   } else {
-    S = mobius_area_correction(a.X, a.F, flash_spherical_map(a.X, a.F, solver).S);
+    const Flash_result flash = flash_spherical_map(a.X, a.F, solver);
+    report.used_tutte_fallback = flash.tutte;
+    report.add_fallback(flash.fallback.empty() ? "" : "initial map: " + flash.fallback);
+    report.repairs += flash.repairs;
+    S = mobius_area_correction(a.X, a.F, flash.S);
     const std::size_t folds = count_inverted_faces_about_center(S, a.F);
     if(folds > 0)
       throw Algorithm_failure("the computed initial spherical map (conformal map with Moebius area correction) is "
-                              "not bijective: " + std::to_string(folds) + " fold-overs (exact count)");
+                              "not bijective: " + std::to_string(folds) + " fold-overs (exact count); " +
+                              crowding_note(a.X, a.F, S));
   }
   return S;
 }
@@ -139,12 +145,12 @@ Map_report spherical_density_equalizing_map(const TriangleMesh& tm, VertexPointO
   const auto solver = internal::solver_from_parameters(np);
   const auto diffusion_solver = internal::diffusion_solver_from_parameters(np);
 
-  internal::Matrix x = internal::initial_spherical_map(a, np, *solver);
+  Map_report report;
+  internal::Matrix x = internal::initial_spherical_map(a, np, *solver, report);
   internal::Ellipsoid_domain sphere(a.F, x, Eigen::Vector3d::Ones(), truncation, *solver);
   internal::Density_flow flow;
   const internal::Engine_result r = internal::run_density_equalization(sphere, flow, x, population, options, *diffusion_solver);
 
-  Map_report report;
   internal::fill_report(r, report);
   report.fold_overs = sphere.fold_overs(x);
   internal::write_points(a, x, sphere_map);
@@ -237,11 +243,11 @@ Map_report landmark_aligned_spherical_density_equalizing_map(const TriangleMesh&
   const auto diffusion_solver = internal::diffusion_solver_from_parameters(np);
   if(!flow.prepare(a.X, a.F, options.time_step, *solver))
     throw Algorithm_failure("the harmonic-energy system of the input mesh could not be factored");
-  internal::Matrix x = internal::initial_spherical_map(a, np, *solver);
+  Map_report report;
+  internal::Matrix x = internal::initial_spherical_map(a, np, *solver, report);
   internal::Ellipsoid_domain sphere(a.F, x, Eigen::Vector3d::Ones(), truncation, *solver);
   const internal::Engine_result r = internal::run_density_equalization(sphere, flow, x, population, options, *diffusion_solver);
 
-  Map_report report;
   internal::fill_report(r, report);
   report.fold_overs = sphere.fold_overs(x);
   report.landmark_error = flow.mean_landmark_error(x);

@@ -182,7 +182,7 @@ Map_report toroidal_density_equalizing_map(const TriangleMesh& tm, VertexPointOu
   const internal::Vector population = internal::population_from_parameters(a, np);
   const internal::Engine_options options = internal::engine_options_from_parameters(np, 0.1, 1e-2, 1000);
   internal::Matrix u;
-  const internal::Offset_matrix o = internal::offsets_from_torus_positions(a.X, a.F, t, u);
+  const internal::Offset_matrix o = internal::offsets_from_torus_positions(a.input_positions(), a.F, t, u);
   std::string why;
   const int orientation = internal::layout_orientation(u, a.F, o, t, why);
   if(orientation == 0) throw Invalid_input(why);
@@ -276,6 +276,8 @@ Map_report toroidal_parameterization(const TriangleMesh& tm, VertexPointOutMap t
   Map_report report;
   internal::fill_toroidal_report(run, t, report);
   report.used_tutte_fallback = initial.used_uniform_weights;
+  if(initial.used_uniform_weights)
+    report.add_fallback("initial map: uniform (Tutte) weights instead of the cotangent weights (the harmonic map folded)");
   internal::write_toroidal_outputs(tm, a, run.u, run.offsets, t, torus_map, np);
   return report;
 }

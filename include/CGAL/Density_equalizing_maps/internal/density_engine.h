@@ -31,6 +31,7 @@
 #include <CGAL/Density_equalizing_maps/internal/sparse_solver.h>
 
 #include <functional>
+#include <sstream>
 #include <string>
 
 namespace CGAL {
@@ -61,7 +62,22 @@ struct Engine_result
   double initial_error = 0, final_error = 0;
   Step_statistics steps;
   std::string message;
+  /// sd/mean of the re-coupled density on the initial and on the returned map
+  double initial_density_error = 0, final_density_error = 0;
 };
+
+/// Says in `res.message` when a run that did not converge returns a map whose
+/// density is further from uniform than the start (the caller must not
+/// present it as a success).
+inline void note_density_regression(Engine_result& res)
+{
+  if(res.termination == Termination::CONVERGED) return;
+  if(!(res.final_density_error > res.initial_density_error)) return;
+  std::ostringstream o;
+  o << (res.message.empty() ? "" : "; ") << "the density is less uniform than at the start (sd/mean "
+    << res.initial_density_error << " -> " << res.final_density_error << ")";
+  res.message += o.str();
+}
 
 /// The per-iteration quantities a flow may use.
 struct Flow_state
@@ -157,6 +173,7 @@ Engine_result run_density_equalization(Domain& domain, Flow& flow, Matrix& x, co
   };
   recouple();
   res.initial_error = relative_sd(rho);
+  res.initial_density_error = res.final_density_error = res.initial_error;
   double error = res.initial_error;
   res.final_error = error;
   if(error < opt.tolerance) { res.termination = Termination::CONVERGED; return res; }
@@ -196,11 +213,13 @@ Engine_result run_density_equalization(Domain& domain, Flow& flow, Matrix& x, co
     ++res.iterations;
     flow.after_step(res.iterations, x, domain);
     recouple();
+    res.final_density_error = relative_sd(rho);
     error = flow.stop_measure(x_previous, x, opt.stop_on_recoupled_density ? relative_sd(rho) : relative_sd(rho_plus));
     res.final_error = error;
     if(opt.progress && !opt.progress(res.iterations, error)) { res.termination = Termination::CANCELLED; break; }
     if(error < opt.tolerance) { res.termination = Termination::CONVERGED; break; }
   }
+  note_density_regression(res);
   return res;
 }
 

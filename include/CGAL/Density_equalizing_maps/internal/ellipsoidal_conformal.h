@@ -190,6 +190,8 @@ struct Ellipsoidal_chart
   Eigen::Index north_face = -1, south_face = -1;
   std::array<Eigen::Index, 3> poles = {-1, -1, -1};
   bool tutte = false;
+  std::string fallback;     // FLASH's (Flash_result::fallback)
+  std::size_t repairs = 0;
 };
 
 inline double perimeter(Complex a, Complex b, Complex c) { return std::abs(a - b) + std::abs(b - c) + std::abs(c - a); }
@@ -202,6 +204,8 @@ inline Ellipsoidal_chart ellipsoidal_chart(const Matrix& X, const Index_matrix& 
   Ellipsoidal_chart ch;
   ch.poles = poles;
   ch.tutte = flash.tutte;
+  ch.fallback = flash.fallback;
+  ch.repairs = flash.repairs;
   ch.north_face = pole_face(X, F, poles[0], -1);
   ch.south_face = pole_face(X, F, poles[1], ch.north_face);
   if(ch.south_face < 0) ch.south_face = pole_face(X, F, poles[1], -1);
@@ -497,6 +501,33 @@ private:
   std::vector<char> m_fixed;
   int m_chart_sign = 1;
 };
+
+/// An ellipsoidal map f of FECM or FEQCM that folds is replaced by the map
+/// moved from the FLASH map scaled to the ellipsoid (fold-free: the scaling is
+/// linear) towards f, as far as the fold-over repair of the density engine
+/// allows (Beltrami repair in two charts, untangling on the sphere, halving).
+/// On tiny meshes (a tetrahedron, a 10-vertex bipyramid) the Moebius
+/// normalization of the poles moves the few vertices so far that the chordal
+/// faces no longer contain the centre: f folds although the chart maps are
+/// bijective. Says what it did in `report` (fallback, repairs).
+inline void repair_folded_ellipsoidal_map(const Flash_result& flash, const Index_matrix& F,
+                                          const Eigen::Vector3d& radii, const Spd_solver& prototype, Matrix& f,
+                                          Map_report& report)
+{
+  const std::size_t folds = count_inverted_faces_about_center(f, F);
+  if(folds == 0) return;
+  const Matrix start = Ellipsoid_domain::from_unit_sphere(flash.S, radii);
+  if(count_inverted_faces_about_center(start, F) != 0) return; // nothing fold-free to start from
+  Ellipsoid_domain domain(F, start, radii, 0.1, prototype);
+  Step_statistics stats;
+  Matrix moved;
+  const bool reached = domain.advance(start, f - start, 1., moved, stats);
+  f = reached ? moved : start;
+  report.repairs += stats.repairs;
+  report.add_fallback("the ellipsoidal map folded " + std::to_string(folds) +
+                      " faces: replaced by the spherical conformal map scaled to the ellipsoid" +
+                      (reached ? ", repaired towards the ellipsoidal map" : ""));
+}
 
 /// (P^N_abc)^{-1} of every row of a chart (n x 2).
 inline Matrix inverse_ellipsoidal_chart(const Matrix& P, const Eigen::Vector3d& radii)

@@ -57,7 +57,7 @@ inline void fill_report(const Engine_result& r, Map_report& report)
   report.iterations = r.iterations;
   report.initial_error = r.initial_error;
   report.final_error = r.final_error;
-  report.repairs = r.steps.repairs;
+  report.repairs += r.steps.repairs; // after those of the start (a fallback repaired)
   report.step_halvings = r.steps.halvings;
   report.message = r.message;
 }

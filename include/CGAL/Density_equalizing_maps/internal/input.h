@@ -29,6 +29,7 @@ Mesh_arrays<TriangleMesh> closed_surface_arrays(const TriangleMesh& tm, const Na
   auto vpm = choose_parameter(get_parameter(np, internal_np::vertex_point), get_const_property_map(vertex_point, tm));
   auto vim = CGAL::get_initialized_vertex_index_map(tm, np);
   Mesh_arrays<TriangleMesh> a = to_arrays(tm, vpm, vim);
+  normalize_scale(a); // before any length or area is computed, validation included
   validate_closed_surface(a.X, a.F, euler, euler == 2 ? 4 : 7);
   // The genus-0 methods build maps whose faces are oriented outward. For an
   // input oriented inward they work on the reversed triangles, so that the

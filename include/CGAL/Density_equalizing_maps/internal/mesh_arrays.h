@@ -19,6 +19,8 @@
 
 #include <Eigen/Core>
 
+#include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -42,7 +44,44 @@ struct Mesh_arrays
   Index_matrix F;
   std::vector<vertex_descriptor> vertices;
   std::vector<face_descriptor> faces;
+  /// X = scale * (the input positions), a power of two (normalize_scale())
+  double scale = 1;
+  /// the positions in the units of the input (where an output lives in them)
+  Matrix input_positions() const { return X / scale; }
 };
+
+/// The power of two 2^-e that brings the largest side of the bounding box of
+/// the finite rows of X into [1/2, 1); 1 if there is none (no finite row, or
+/// all points equal: validation reports them).
+inline double unit_scale(const Matrix& X)
+{
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for(Eigen::Index i = 0; i < X.rows(); ++i)
+    if(X.row(i).allFinite()) {
+      lo = lo.cwiseMin(X.row(i).transpose());
+      hi = hi.cwiseMax(X.row(i).transpose());
+    }
+  // half sides: hi - lo may overflow where hi / 2 - lo / 2 does not
+  double half_side = 0;
+  for(int c = 0; c < 3; ++c)
+    if(hi[c] >= lo[c]) half_side = std::max(half_side, 0.5 * hi[c] - 0.5 * lo[c]);
+  if(!(half_side > 0) || !std::isfinite(half_side)) return 1;
+  int e = 0;
+  std::frexp(half_side, &e); // half_side = m 2^e with m in [1/2, 1)
+  return std::ldexp(1., -(e + 1));
+}
+
+/// Scales the positions by unit_scale(): the numerics work on a mesh of size
+/// about 1 whatever the units of the input (coordinates near 1e+-100 have
+/// squared lengths and areas that overflow or underflow). A power of two
+/// changes only the exponents, so the scaled computation rounds exactly as the
+/// unscaled one would: the results are the same up to the scale, bit for bit.
+template <class TriangleMesh>
+void normalize_scale(Mesh_arrays<TriangleMesh>& a)
+{
+  a.scale = unit_scale(a.X);
+  if(a.scale != 1) a.X *= a.scale;
+}
 
 /// Extracts positions and triangles. Throws `Invalid_input` if a face is not a
 /// triangle; all other checks are in validation.h.

@@ -352,7 +352,23 @@ public:
   }
 
 private:
+  /// CG with the current preconditioner; if it misses the tolerance within
+  /// its step budget (Jacobi on meshes with sliver faces, whose cotangent
+  /// weights reach 1e4 times the mass: the system is too ill-conditioned for
+  /// it; or a lagged factorization too far from this matrix), the exact
+  /// factorization of this very matrix, for good (Jacobi is given up).
   bool run(const Matrix& B, Matrix& X, const Matrix& guess, int& iterations)
+  {
+    if(preconditioned_run(B, X, guess, iterations)) return true;
+    if(m_A == nullptr) return false;
+    m_inverse_diagonal.resize(0);
+    m_jacobi_given_up = true;
+    m_factored = m_direct->factor(*m_A);
+    m_rows = m_A->rows();
+    return m_factored && preconditioned_run(B, X, guess, iterations);
+  }
+
+  bool preconditioned_run(const Matrix& B, Matrix& X, const Matrix& guess, int& iterations)
   {
     X.resize(B.rows(), B.cols());
     iterations = 0;

@@ -15,6 +15,8 @@
 
 #include <algorithm>
 #include <numeric>
+#include <sstream>
+#include <string>
 
 namespace CGAL {
 namespace Density_equalizing_maps {
@@ -26,6 +28,8 @@ struct Flash_result
   Complex_vector south_w;   // the south-chart coordinates after the LBS step (S = (P^S)^{-1}(w))
   Eigen::Index north_face = 0;
   bool tutte = false;
+  std::string fallback;     // empty, or which fallback was taken (Map_report::fallback)
+  std::size_t repairs = 0;  // Beltrami repairs of the fallback start
 };
 
 /// Harmonic map of the mesh punctured at face `t` onto the plane: the three
@@ -94,6 +98,7 @@ inline Flash_result flash_spherical_map(const Matrix& X, const Index_matrix& F, 
   };
   if(!ok || !balance_and_lift(z)) {
     res.tutte = true;
+    res.fallback = "tutte embedding (the cotangent harmonic map could not be computed)";
     const Complex tutte_corners[3] = {Complex(1, 0), std::polar(1., 2 * M_PI / 3), std::polar(1., 4 * M_PI / 3)};
     std::unique_ptr<Spd_solver> s2 = prototype.clone();
     if(!punctured_harmonic_map(graph_laplacian(F, n), F, t, tutte_corners, *s2, z) || !balance_and_lift(z))
@@ -148,12 +153,35 @@ inline Flash_result flash_spherical_map(const Matrix& X, const Index_matrix& F, 
       Ellipsoid_domain sphere(F, tutte, Eigen::Vector3d::Ones(), 0.1, prototype);
       Step_statistics stats;
       Matrix repaired;
-      res.S = sphere.advance(tutte, res.S - tutte, 1., repaired, stats) ? repaired : tutte;
+      const bool moved = sphere.advance(tutte, res.S - tutte, 1., repaired, stats);
+      res.S = moved ? repaired : tutte;
       res.tutte = true;
+      res.repairs += stats.repairs;
+      res.fallback = moved ? "tutte embedding repaired towards the harmonic map (the harmonic map folded)"
+                           : "tutte embedding (the harmonic map folded and could not be repaired)";
       for(Eigen::Index i = 0; i < n; ++i) res.south_w[i] = south_stereographic(row_vector3(res.S, i));
     }
   }
   return res;
+}
+
+/// Why a conformal map onto the sphere or an ellipsoid folded, for the
+/// report: the spread of the (normalized) image-to-input area ratios. A
+/// conformal map of a long tube crowds exponentially with its length (a 100:1
+/// capsule needs ratios near e^-200): past about 1e-14 the faces of the
+/// crowded end are below the rounding of the coordinates and fold.
+inline std::string crowding_note(const Matrix& X, const Index_matrix& F, const Matrix& Y)
+{
+  const Vector a = face_areas(X, F), b = face_areas(Y, F);
+  const double sa = a.sum(), sb = b.sum();
+  double smallest = std::numeric_limits<double>::infinity();
+  for(Eigen::Index k = 0; k < F.rows(); ++k) smallest = std::min(smallest, (b[k] / sb) / (a[k] / sa));
+  std::ostringstream o;
+  o << "smallest image-to-input area ratio " << smallest;
+  if(!(smallest > 1e-12))
+    o << ": the conformal map crowds faces below the precision of double (an elongated or strongly "
+         "protruding surface: its conformal image shrinks exponentially along the protrusion)";
+  return o.str();
 }
 
 /// Moebius map f(z) = e^s (z - w0) / (1 + conj(w0) z): a rotation of the
