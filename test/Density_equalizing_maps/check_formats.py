@@ -33,6 +33,7 @@ def check(ok, what):
     print(("ok      " if ok else "FAILED  ") + what)
     if not ok:
         failures += 1
+    return ok
 
 
 def close(a, b, tol=1e-12):
@@ -73,7 +74,7 @@ def main(d, dem):
     check(col is not None and col.shape == (m, 3), "vtk legacy cell colours (m x 3)")
     mv = meshio.read(os.path.join(d, "bumpy_sphere.vtk"))
     for k, n in enumerate(names):
-        check(close(mv.cell_data[n][0], face[:, k]), f"meshio legacy vtk cell data {n}")
+        check(close(np.ravel(mv.cell_data[n][0]), face[:, k]), f"meshio legacy vtk cell data {n}")
 
     # --- VTP through vtk and meshio
     r = vtk.vtkXMLPolyDataReader()
@@ -87,8 +88,7 @@ def main(d, dem):
           "vtp active cell scalars = abs_mu (coloured by mu)")
     fr = vtk_to_numpy(p.GetFieldData().GetArray("color_range"))
     check(close(fr, [0, 1]), f"vtp field color_range = {list(fr)}")
-    mp = meshio.read(os.path.join(d, "bumpy_sphere.vtp"))
-    check(close(mp.cell_data["log_area_ratio"][0], face[:, 2]), "meshio vtp cell data log_area_ratio")
+    # (meshio 5 reads .vtu but not .vtp: the VTP file is checked with vtk only)
 
     # --- OBJ with texture coordinates through vtkOBJReader
     for name, exact in (("sphere_equirectangular.obj", False), ("ellipsoid_equirectangular.obj", False),
@@ -106,7 +106,13 @@ def main(d, dem):
         area = 0.5 * ((b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (c[:, 0] - a[:, 0]) * (b[:, 1] - a[:, 1]))
         check((area > 0).all(), f"{name}: {len(area)} texture triangles, all positive ({(area <= 0).sum()} not)")
         total = area.sum()
-        check(abs(total - 1) < (1e-6 if exact else 0.05), f"{name}: total texture area {total:.6f} (unit square = 1)")
+        # flat torus: the layout tiles the cell exactly; equirectangular: up to the
+        # v-height of the faces that touch a pole line (see test_formats.cpp)
+        v = uv[:, 1][polys]
+        top, bottom = (v == 1).any(axis=1), (v == 0).any(axis=1)
+        band = (1 - v[top].min() if top.any() else 0) + (v[bottom].max() if bottom.any() else 0)
+        tol = 1e-6 if exact else band
+        check(abs(total - 1) <= tol, f"{name}: total texture area {total:.6f} (unit square = 1, tolerance {tol:.4f})")
 
     # --- FreeSurfer through nibabel
     coords, faces = fs.read_geometry(os.path.join(d, "lh.bumpy"))

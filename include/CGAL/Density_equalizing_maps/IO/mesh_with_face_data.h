@@ -227,9 +227,11 @@ void write_VTP_with_face_data(const std::string& filename, const TriangleMesh& t
   const internal::Colors colors = internal::colors_of(s, d.values(by), by);
   std::ofstream os = internal::open_for_writing(filename);
   const std::size_t n = s.points.size(), m = s.faces.size();
-  auto array_header = [&os](const char* type, const std::string& name, int components) {
+  auto array_header = [&os](const char* type, const std::string& name, int components, std::size_t tuples = 0) {
     os << "<DataArray type=\"" << type << "\"" << (name.empty() ? "" : " Name=\"" + name + "\"")
-       << " NumberOfComponents=\"" << components << "\" format=\"ascii\">\n";
+       << " NumberOfComponents=\"" << components << "\"";
+    if(tuples > 0) os << " NumberOfTuples=\"" << tuples << "\"";
+    os << " format=\"ascii\">\n";
   };
   auto write_colors = [&](const std::vector<Rgb>& c) {
     array_header("UInt8", "colors", 3);
@@ -239,7 +241,7 @@ void write_VTP_with_face_data(const std::string& filename, const TriangleMesh& t
   os << "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
      << "<!-- Density_equalizing_maps: " << internal::range_description(by, colors.range) << " -->\n"
      << "<PolyData>\n<FieldData>\n";
-  array_header("Float64", "color_range", 1);
+  array_header("Float64", "color_range", 1, 2);
   os << colors.range.low << ' ' << colors.range.high << "\n</DataArray>\n</FieldData>\n"
      << "<Piece NumberOfPoints=\"" << n << "\" NumberOfPolys=\"" << m << "\">\n<Points>\n";
   array_header("Float64", "", 3);
