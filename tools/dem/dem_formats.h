@@ -38,7 +38,13 @@
 #include <CGAL/Density_equalizing_maps/IO/texture_coordinates.h>
 #include <CGAL/Density_equalizing_maps/Map_report.h>
 
+#include <CGAL/IO/polygon_soup_io.h>
+#include <CGAL/Simple_cartesian.h>
+
 #include <algorithm>
+#include <array>
+#include <cmath>
+#include <sstream>
 #include <cctype>
 #include <fstream>
 #include <stdexcept>
@@ -209,6 +215,82 @@ inline std::vector<double> face_population_from_vertex_density(const DIO::Triang
     p[k] = area[k] * (density[f[0]] + density[f[1]] + density[f[2]]) / 3;
   }
   return p;
+}
+
+/// What the OBJ writer needs to lay out texture coordinates on the map's domain.
+template <class Mesh>
+struct Texture_domain
+{
+  enum Kind { SPHERE, ELLIPSOID, TORUS } kind = SPHERE;
+  std::array<double, 3> radii{{1., 1., 1.}}; // the ellipsoid's semi-axes
+  double R = 0, r = 0;                       // the torus radii
+  // torus: the flat-torus point of every vertex and the lattice offset of every halfedge
+  typename Mesh::template Property_map<typename Mesh::Vertex_index, typename CGAL::Simple_cartesian<double>::Point_2> flat;
+  typename Mesh::template Property_map<typename Mesh::Halfedge_index, std::array<int, 2> > offsets;
+};
+
+/// Writes the mapped mesh `mesh` with the positions `mapped` in the format `kind`.
+/// \throws Invalid_input if writing fails
+template <class Mesh, class PointMap>
+void write_mapped_mesh(Output_kind kind, const std::string& file, const Mesh& mesh, PointMap mapped,
+                       const DIO::Face_data& data, DIO::Color_by by, const Texture_domain<Mesh>& domain)
+{
+  switch(kind) {
+  case Output_kind::PLY: DIO::write_PLY_with_face_data(file, mesh, mapped, data, by); return;
+  case Output_kind::VTK: DIO::write_VTK_with_face_data(file, mesh, mapped, data, by); return;
+  case Output_kind::VTP: DIO::write_VTP_with_face_data(file, mesh, mapped, data, by); return;
+  case Output_kind::GIFTI: DIO::write_GIfTI_surface(file, DIO::triangle_soup(mesh, mapped)); return;
+  case Output_kind::FREESURFER: DIO::write_FreeSurfer_surface(file, DIO::triangle_soup(mesh, mapped), "dem"); return;
+  case Output_kind::OBJ: {
+    const DIO::Textured_mesh t =
+      domain.kind == Texture_domain<Mesh>::TORUS
+        ? DIO::flat_torus_texture(mesh, mapped, domain.flat, domain.offsets, domain.R, domain.r)
+        : DIO::equirectangular_texture(mesh, mapped, domain.radii);
+    DIO::write_OBJ_with_texture(file, t, domain.kind == Texture_domain<Mesh>::TORUS
+                                           ? "dem: flat-torus texture coordinates, unit square = one period cell"
+                                           : "dem: equirectangular texture coordinates (longitude, latitude) in [0,1]^2");
+    return;
+  }
+  case Output_kind::POSITIONS: {
+    const DIO::Triangle_soup s = DIO::triangle_soup(mesh, mapped);
+    std::vector<CGAL::Simple_cartesian<double>::Point_3> points;
+    for(const auto& p : s.points) points.emplace_back(p[0], p[1], p[2]);
+    if(!CGAL::IO::write_polygon_soup(file, points, s.faces, CGAL::parameters::stream_precision(17)))
+      throw CGAL::Density_equalizing_maps::Invalid_input("cannot write " + file);
+    return;
+  }
+  }
+}
+
+/// Reads an input surface as a soup with the reader `input_kind()` chose.
+/// \throws Invalid_input if it cannot be read or has no face
+inline DIO::Triangle_soup read_surface(const std::string& file)
+{
+  switch(input_kind(file)) {
+  case Input_kind::FREESURFER: return DIO::read_FreeSurfer_surface(file);
+  case Input_kind::GIFTI: return DIO::read_GIfTI_surface(file);
+  default: break;
+  }
+  std::vector<CGAL::Simple_cartesian<double>::Point_3> points;
+  std::vector<std::vector<std::size_t> > polygons;
+  bool ok = false;
+  try {
+    ok = CGAL::IO::read_polygon_soup(file, points, polygons, CGAL::parameters::verbose(false));
+  } catch(const std::exception& e) {
+    throw CGAL::Density_equalizing_maps::Invalid_input("cannot read " + file + ": " + e.what());
+  }
+  if(!ok || polygons.empty())
+    throw CGAL::Density_equalizing_maps::Invalid_input("cannot read a mesh from " + file + " (syntax error or no face)");
+  DIO::Triangle_soup s;
+  for(const auto& p : points) s.points.push_back({{p.x(), p.y(), p.z()}});
+  for(std::size_t k = 0; k < polygons.size(); ++k) {
+    if(polygons[k].size() != 3)
+      throw CGAL::Density_equalizing_maps::Invalid_input(file + ": face " + std::to_string(k) + " has " +
+                                                         std::to_string(polygons[k].size()) +
+                                                         " vertices; a triangle mesh is required");
+    s.faces.push_back({{polygons[k][0], polygons[k][1], polygons[k][2]}});
+  }
+  return s;
 }
 
 } // namespace dem_cli
