@@ -7,7 +7,8 @@
 
 // Quality measures of a map between a triangle mesh and its image with the same
 // connectivity (ALGORITHMS.md section 11): exact fold-over counts, Beltrami
-// coefficients, log area ratios and density variances. They diagnose any pure
+// coefficients, log area ratios, density variances and the uniformity of the
+// faces (delta_size, delta_shape). They diagnose any pure
 // triangle mesh: unlike the mapping functions they do not require a closed
 // genus-0 surface.
 
@@ -325,6 +326,42 @@ Distortion_statistics map_distortion(const TriangleMesh& tm, MappedPointMap mapp
   s.mean_abs_darea = d.abs_darea.mean;
   s.sd_abs_darea = d.abs_darea.sd;
   return s;
+}
+
+/// \ingroup PkgDensityEqualizingMapsMeasures
+/// How uniform the triangles of a mesh are (paper 000, eqs. 43-45), the two quality
+/// measures of remeshing.
+struct Mesh_uniformity
+{
+  /// \f$ \delta_{size} = \ln(A_{max} / A_{min}) \f$, the spread of the face areas
+  /// (natural log; 0 if all faces have the same area, infinite if one is degenerate)
+  double delta_size = 0;
+  /// \f$ \delta_{shape} \f$, the mean over the faces of the irregularity
+  /// \f$ R_T = \sum_{a=1}^3 |\ell_a / (\ell_1 + \ell_2 + \ell_3) - 1/3| \f$
+  /// of the edge lengths (0 for equilateral triangles, at most 2/3 for a needle)
+  double delta_shape = 0;
+};
+
+/// \ingroup PkgDensityEqualizingMapsMeasures
+/// \brief Computes the size and shape uniformity \f$ \delta_{size} \f$ and
+/// \f$ \delta_{shape} \f$ of the faces of a triangle mesh (paper 000, eqs. 43-45), as
+/// reported for remeshed surfaces (see `remesh_through_map()`).
+///
+/// \tparam TriangleMesh a model of `FaceListGraph`
+/// \param tm a pure triangle mesh with at least one face
+/// \param np optional named parameters: `vertex_point_map` and `vertex_index_map` as for
+///        `number_of_fold_overs()`
+/// \returns both measures over all faces of `tm`
+/// \throws Invalid_input if a face is not a triangle
+template <class TriangleMesh, class NamedParameters = parameters::Default_named_parameters>
+Mesh_uniformity mesh_uniformity(const TriangleMesh& tm, const NamedParameters& np = parameters::default_values())
+{
+  const auto a = internal::measure_arrays(tm, np);
+  const internal::Mesh_uniformity u = internal::mesh_uniformity(a.X, a.F);
+  Mesh_uniformity r;
+  r.delta_size = u.delta_size;
+  r.delta_shape = u.delta_shape;
+  return r;
 }
 
 } // namespace Density_equalizing_maps

@@ -134,6 +134,26 @@ inline Distortion distortion(const Matrix& X, const Matrix& Y, const Index_matri
   return d;
 }
 
+/// Remeshing quality (paper 000 eqs. 43-45, ALGORITHMS.md 1.8 and 11):
+/// delta_size = ln(A_max / A_min) over the faces (natural log; infinite if a
+/// face is degenerate) and delta_shape = mean over the faces of the face
+/// irregularity R_T = sum_a |l_a / (l_1 + l_2 + l_3) - 1/3| (0 for equilateral).
+struct Mesh_uniformity
+{
+  double delta_size = 0;
+  double delta_shape = 0;
+};
+
+inline Mesh_uniformity mesh_uniformity(const Matrix& X, const Index_matrix& F)
+{
+  Mesh_uniformity q;
+  if(F.rows() == 0) return q;
+  const Vector area = face_areas(X, F);
+  q.delta_size = std::log(area.maxCoeff() / area.minCoeff());
+  q.delta_shape = face_irregularity(X, F).mean();
+  return q;
+}
+
 } // namespace internal
 } // namespace Density_equalizing_maps
 } // namespace CGAL
