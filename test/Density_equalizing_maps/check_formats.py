@@ -139,7 +139,109 @@ def main(d, dem):
     else:
         print("note    gifti_tool not installed (Debian gifti-bin): skipped its validation")
 
+    if dem:
+        check_cli(d, dem)
     return 1 if failures else 0
+
+
+def run_dem(dem, *args):
+    res = subprocess.run([dem, *args], capture_output=True, text=True)
+    return res.returncode, res.stdout + res.stderr
+
+
+def check_cli(d, dem):
+    """The dem tool on neuroimaging files, read back with nibabel / meshio; format errors."""
+    out = os.path.join(d, "cli")
+    os.makedirs(out, exist_ok=True)
+    coords, faces = fs.read_geometry(os.path.join(d, "lh.bumpy"))
+    # dem spherical-conformal lh.white --output lh.sphere / lh.sphere.gii
+    rc, text = run_dem(dem, "spherical-conformal", os.path.join(d, "lh.bumpy"), "--output", os.path.join(out, "lh.sphere"),
+                       "--quiet")
+    check(rc == 0, f"dem spherical-conformal lh.bumpy --output lh.sphere: exit {rc}")
+    if rc == 0:
+        sc, sf = fs.read_geometry(os.path.join(out, "lh.sphere"))
+        r = np.linalg.norm(sc, axis=1)
+        check(np.array_equal(sf, faces) and abs(r - 1).max() < 1e-6,
+              f"nibabel reads dem's FreeSurfer sphere: same faces, |radius - 1| <= {abs(r - 1).max():.1e}")
+    rc, text = run_dem(dem, "spherical-conformal", os.path.join(d, "lh.bumpy"), "--output",
+                       os.path.join(out, "lh.sphere.gii"), "--output-scale", "100", "--quiet")
+    check(rc == 0, f"dem ... --output lh.sphere.gii --output-scale 100: exit {rc}")
+    if rc == 0:
+        g = nib.load(os.path.join(out, "lh.sphere.gii"))
+        gc, gf = g.agg_data(("pointset", "triangle"))
+        r = np.linalg.norm(gc, axis=1)
+        check(np.array_equal(gf, faces) and abs(r - 100).max() < 1e-4,
+              f"nibabel reads dem's GIfTI sphere: radius 100 to {abs(r - 100).max():.1e}")
+
+    # files nibabel writes (GZipBase64Binary by default) read by dem, with a per-vertex population
+    dens = 1 + 0.5 * (coords[:, 2] > 0)
+    surf = nib.gifti.GiftiImage(darrays=[
+        nib.gifti.GiftiDataArray(coords.astype(np.float32), intent="NIFTI_INTENT_POINTSET"),
+        nib.gifti.GiftiDataArray(faces.astype(np.int32), intent="NIFTI_INTENT_TRIANGLE")])
+    nib.save(surf, os.path.join(out, "nib.surf.gii"))
+    shape = nib.gifti.GiftiImage(darrays=[nib.gifti.GiftiDataArray(dens.astype(np.float32), intent="NIFTI_INTENT_SHAPE")])
+    nib.save(shape, os.path.join(out, "nib.shape.gii"))
+    enc = surf.darrays[0].encoding
+    rc, text = run_dem(dem, "sdem", os.path.join(out, "nib.surf.gii"), "--vertex-population",
+                       os.path.join(out, "nib.shape.gii"), "--output", os.path.join(out, "sdem.ply"),
+                       "--color-by", "density", "--output-input-colored", os.path.join(out, "input.vtk"), "--quiet")
+    check(rc == 0, f"dem sdem nib.surf.gii (nibabel encoding {enc}) --vertex-population nib.shape.gii: exit {rc} {text.strip()[:200]}")
+    if rc == 0:
+        m = meshio.read(os.path.join(out, "sdem.ply"))
+        a, b, c = (coords[faces[:, k]] for k in range(3))
+        area = 0.5 * np.linalg.norm(np.cross(b - a, c - a), axis=1)
+        expected = area * dens[faces].mean(axis=1)
+        check(close(m.cell_data["population"][0], expected, 1e-5),
+              "face population = input area x mean corner density (meshio on dem's PLY)")
+        dr = np.asarray(m.cell_data["density_ratio"][0])
+        check(dr.var(ddof=1) < 1e-2, f"sdem output density ratio close to 1: variance {dr.var(ddof=1):.2e}")
+        mi = meshio.read(os.path.join(out, "input.vtk"))
+        check(close(np.ravel(mi.cell_data["population"][0]), expected, 1e-5) and close(mi.points, coords, 1e-6),
+              "--output-input-colored: the input geometry with the same cell data (meshio)")
+
+    # a negative curv file is not a population
+    rc, text = run_dem(dem, "sdem", os.path.join(d, "lh.bumpy"), "--vertex-population", os.path.join(d, "lh.bumpy.curv"))
+    check(rc == 3 and "positive" in text, f"negative curv as population: exit {rc}: {text.strip()[:160]}")
+
+    # the torus to an OBJ with flat-torus texture coordinates
+    nu, nv = 24, 12
+    with open(os.path.join(out, "torus.off"), "w") as f:
+        f.write(f"OFF\n{nu * nv} {2 * nu * nv} 0\n")
+        for i in range(nu):
+            for j in range(nv):
+                s_, t_ = 2 * np.pi * i / nu, 2 * np.pi * j / nv
+                f.write(f"{(3 + np.cos(t_)) * np.cos(s_)} {(3 + np.cos(t_)) * np.sin(s_)} {np.sin(t_)}\n")
+        for i in range(nu):
+            for j in range(nv):
+                a, b = i * nv + j, ((i + 1) % nu) * nv + j
+                c, e = ((i + 1) % nu) * nv + (j + 1) % nv, i * nv + (j + 1) % nv
+                f.write(f"3 {a} {b} {c}\n3 {a} {c} {e}\n")
+    rc, text = run_dem(dem, "tdem", os.path.join(out, "torus.off"), "--torus", "3", "1", "--output",
+                       os.path.join(out, "torus.obj"), "--quiet")
+    check(rc == 0, f"dem tdem torus.off --output torus.obj: exit {rc} {text.strip()[:200]}")
+    if rc == 0:
+        r = vtk.vtkOBJReader()
+        r.SetFileName(os.path.join(out, "torus.obj"))
+        r.Update()
+        o = r.GetOutput()
+        uv = vtk_to_numpy(o.GetPointData().GetTCoords())
+        polys = vtk_to_numpy(o.GetPolys().GetData()).reshape(-1, 4)[:, 1:]
+        a, b, c = uv[polys[:, 0]], uv[polys[:, 1]], uv[polys[:, 2]]
+        area = 0.5 * ((b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (c[:, 0] - a[:, 0]) * (b[:, 1] - a[:, 1]))
+        check((area > 0).all() and abs(area.sum() - 1) < 1e-6,
+              f"dem's torus OBJ: {len(area)} texture triangles, {(area <= 0).sum()} not positive, total {area.sum():.9f}")
+
+    # format errors come before the work
+    rc, text = run_dem(dem, "spherical-conformal", os.path.join(d, "lh.bumpy"), "--output", os.path.join(out, "x.xyz"))
+    check(rc == 2 and "cannot tell the format" in text and not os.path.exists(os.path.join(out, "x.xyz")),
+          f"unknown output extension: exit {rc}: {text.strip()[:120]}")
+    with open(os.path.join(out, "mesh.vtp"), "w") as f:
+        f.write("<VTKFile/>")
+    rc, text = run_dem(dem, "spherical-conformal", os.path.join(out, "mesh.vtp"))
+    check(rc == 3 and "built with VTK" in text and "PLY" in text, f"VTK XML input: exit {rc}: {text.strip()[:160]}")
+    rc, text = run_dem(dem, "sdem", "--help")
+    check(rc == 0 and "default 0.001" in text and "examples:" in text and ".gii" in text,
+          "dem sdem --help: defaults, formats, examples")
 
 
 if __name__ == "__main__":

@@ -25,6 +25,9 @@
 #endif
 
 #include <sys/stat.h>
+#include <sys/wait.h>
+
+#include <cstdlib>
 
 using namespace dem_test;
 namespace DEM = CGAL::Density_equalizing_maps;
@@ -417,6 +420,62 @@ void test_gifti()
                  "base64"), "invalid base64 named");
 }
 
+// ---------------------------------------------------------------- the dem tool
+
+struct Cli_result
+{
+  int status = -1;
+  std::string output; // stdout + stderr
+};
+
+Cli_result run_dem(const std::string& args)
+{
+  const std::string log = out("cli_log.txt");
+  const std::string cmd = std::string("\"") + DEM_CLI + "\" " + args + " > \"" + log + "\" 2>&1";
+  const int s = std::system(cmd.c_str());
+  Cli_result r;
+  r.status = WIFEXITED(s) ? WEXITSTATUS(s) : -1;
+  r.output = file_text(log);
+  return r;
+}
+
+void test_cli_formats()
+{
+  // lh.bumpy was written by test_freesurfer: a FreeSurfer input without extension
+  Cli_result r = run_dem("spherical-conformal " + out("lh.bumpy") + " --quiet --output " + out("cli_sphere.ply") +
+                         " --color-by mu --output-input-colored " + out("cli_input.vtp"));
+  check(r.status == 0, "dem reads a FreeSurfer surface and writes PLY + VTP: " + r.output);
+  Mesh back;
+  std::ifstream in(out("cli_sphere.ply"));
+  check(CGAL::IO::read_PLY(in, back) && back.property_map<face_descriptor, double>("f:abs_mu").second &&
+          back.property_map<face_descriptor, CGAL::IO::Color>("f:color").second,
+        "dem's PLY has abs_mu and face colours");
+  double max_radius_error = 0;
+  for(auto v : back.vertices())
+    max_radius_error = std::max(max_radius_error, std::abs(std::sqrt(CGAL::squared_distance(back.point(v), CGAL::ORIGIN)) - 1));
+  check(max_radius_error < 1e-9, "dem's PLY: points on the unit sphere");
+  check(contains(file_text(out("cli_sphere.ply")), "colored by mu, viridis over [0, 1]"), "PLY comment names mu and [0, 1]");
+  check(contains(file_text(out("cli_input.vtp")), "<CellData Scalars=\"abs_mu\">"), "input coloured by mu (VTP)");
+
+  r = run_dem("spherical-conformal " + out("lh.bumpy") + " --output " + out("cli.xyz"));
+  check(r.status == 2 && contains(r.output, "cannot tell the format") && !std::ifstream(out("cli.xyz")),
+        "unknown output extension: usage error, nothing written: " + r.output);
+  r = run_dem("spherical-conformal " + out("lh.bumpy") + " --output-input-colored " + out("cli.obj"));
+  check(r.status == 2 && contains(r.output, "only .ply, .vtk and .vtp"), "coloured input needs ply/vtk/vtp: " + r.output);
+  write_text(out("cli_mesh.vtp"), "<VTKFile/>");
+  r = run_dem("spherical-conformal " + out("cli_mesh.vtp"));
+  check(r.status == 3 && contains(r.output, "built with VTK") && contains(r.output, "PLY"),
+        "VTK XML input: the reason and what to do: " + r.output);
+  r = run_dem("sdem " + out("lh.bumpy") + " --vertex-population " + out("lh.bumpy.curv"));
+  check(r.status == 3 && contains(r.output, "must be positive"), "negative curv values are not a population: " + r.output);
+  r = run_dem("sdem --help");
+  check(r.status == 0 && contains(r.output, "--tolerance EPS") && contains(r.output, "default 0.001") &&
+          contains(r.output, "examples:") && contains(r.output, ".gii"),
+        "dem sdem --help: options, defaults, formats, examples: " + r.output);
+  r = run_dem("spherical-conformal " + out("lh.bumpy") + " --color-by area");
+  check(r.status == 2 && contains(r.output, "darea, mu, density, population"), "bad --color-by: " + r.output);
+}
+
 } // namespace
 
 int main()
@@ -427,5 +486,6 @@ int main()
   test_flat_torus_texture();
   test_freesurfer();
   test_gifti();
+  test_cli_formats();
   return finish("test_formats");
 }
