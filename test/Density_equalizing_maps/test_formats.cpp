@@ -452,7 +452,7 @@ void test_cli_formats()
         "dem's PLY has abs_mu and face colours");
   double max_radius_error = 0;
   for(auto v : back.vertices())
-    max_radius_error = std::max(max_radius_error, std::abs(std::sqrt(CGAL::squared_distance(back.point(v), CGAL::ORIGIN)) - 1));
+    max_radius_error = std::max(max_radius_error, std::abs(std::sqrt((back.point(v) - CGAL::ORIGIN).squared_length()) - 1));
   check(max_radius_error < 1e-9, "dem's PLY: points on the unit sphere");
   check(contains(file_text(out("cli_sphere.ply")), "colored by mu, viridis over [0, 1]"), "PLY comment names mu and [0, 1]");
   check(contains(file_text(out("cli_input.vtp")), "<CellData Scalars=\"abs_mu\">"), "input coloured by mu (VTP)");

@@ -107,6 +107,23 @@ inline void check_sizes(const Triangle_soup& s, const Face_data& d)
                           " values for " + std::to_string(s.faces.size()) + " faces");
 }
 
+/// The geometry of a writer's mesh with its colours, after the size checks.
+struct Colored_soup
+{
+  Triangle_soup soup;
+  Colors colors;
+};
+
+template <class TriangleMesh, class PointMap>
+Colored_soup colored_soup(const TriangleMesh& tm, PointMap points, const Face_data& d, Color_by by)
+{
+  Colored_soup c;
+  c.soup = triangle_soup(tm, points);
+  check_sizes(c.soup, d);
+  c.colors = colors_of(c.soup, d.values(by), by);
+  return c;
+}
+
 inline std::ofstream open_for_writing(const std::string& filename, bool binary = false)
 {
   std::ofstream out(filename, binary ? std::ios::out | std::ios::binary : std::ios::out);
@@ -143,9 +160,9 @@ void write_PLY_with_face_data(const std::string& filename, const TriangleMesh& t
 {
   typedef CGAL::Simple_cartesian<double>::Point_3 Point;
   typedef CGAL::Surface_mesh<Point> Mesh;
-  const Triangle_soup s = triangle_soup(tm, points);
-  internal::check_sizes(s, d);
-  const internal::Colors colors = internal::colors_of(s, d.values(by), by);
+  const internal::Colored_soup cs = internal::colored_soup(tm, points, d, by);
+  const Triangle_soup& s = cs.soup;
+  const internal::Colors& colors = cs.colors;
 
   Mesh out;
   std::vector<Mesh::Vertex_index> v;
@@ -184,9 +201,9 @@ template <class TriangleMesh, class PointMap>
 void write_VTK_with_face_data(const std::string& filename, const TriangleMesh& tm, PointMap points,
                               const Face_data& d, Color_by by)
 {
-  const Triangle_soup s = triangle_soup(tm, points);
-  internal::check_sizes(s, d);
-  const internal::Colors colors = internal::colors_of(s, d.values(by), by);
+  const internal::Colored_soup cs = internal::colored_soup(tm, points, d, by);
+  const Triangle_soup& s = cs.soup;
+  const internal::Colors& colors = cs.colors;
   std::ofstream os = internal::open_for_writing(filename);
   const std::size_t n = s.points.size(), m = s.faces.size();
   os << "# vtk DataFile Version 3.0\n"
@@ -222,9 +239,9 @@ template <class TriangleMesh, class PointMap>
 void write_VTP_with_face_data(const std::string& filename, const TriangleMesh& tm, PointMap points,
                               const Face_data& d, Color_by by)
 {
-  const Triangle_soup s = triangle_soup(tm, points);
-  internal::check_sizes(s, d);
-  const internal::Colors colors = internal::colors_of(s, d.values(by), by);
+  const internal::Colored_soup cs = internal::colored_soup(tm, points, d, by);
+  const Triangle_soup& s = cs.soup;
+  const internal::Colors& colors = cs.colors;
   std::ofstream os = internal::open_for_writing(filename);
   const std::size_t n = s.points.size(), m = s.faces.size();
   auto array_header = [&os](const char* type, const std::string& name, int components, std::size_t tuples = 0) {
