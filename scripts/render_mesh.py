@@ -1,14 +1,16 @@
 #!/usr/bin/env python3
 # Copyright (c) 2026 Density_equalizing_maps contributors.
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""Renders triangle meshes (OFF) side by side into a PNG, for the manual's figures.
+"""Renders triangle meshes (OFF, or ASCII PLY) side by side into a PNG, for the manual's figures.
 
 Pure Python 3 (no numpy, no matplotlib): orthographic view, z-buffer, flat
 Lambert shading, 2x supersampling, PNG written with zlib.
 
   render_mesh.py OUT.png PANEL [PANEL ...] [--size S] [--title-free]
 
-PANEL is `mesh.off` followed by comma-separated options:
+PANEL is `mesh.off` (or `mesh.ply`: an ASCII PLY with per-face red/green/blue, such as
+`dem --output x.ply` writes, is drawn in its own colours unless a colour option is given)
+followed by comma-separated options:
   ref=input.off     colour faces by the log area ratio log((|f(T)|/sum)/(|T|/sum)),
                     mesh = the map f, ref = the input (same connectivity);
                     blue = shrunk, white = preserved, red = enlarged
@@ -34,6 +36,58 @@ import math
 import struct
 import sys
 import zlib
+
+
+def read_ply(path):
+    """ASCII PLY: vertices x y z, faces as vertex_indices lists; per-face red green blue if present."""
+    with open(path) as f:
+        if f.readline().strip() != 'ply':
+            raise SystemExit(f'{path}: not a PLY file')
+        elements, fmt = [], None
+        for line in f:
+            t = line.split()
+            if not t or t[0] in ('comment', 'obj_info'):
+                continue
+            if t[0] == 'format':
+                fmt = t[1]
+            elif t[0] == 'element':
+                elements.append((t[1], int(t[2]), []))
+            elif t[0] == 'property':
+                elements[-1][2].append(t[-1] if t[1] != 'list' else ('list', t[-1]))
+            elif t[0] == 'end_header':
+                break
+        if fmt != 'ascii':
+            raise SystemExit(f'{path}: only ASCII PLY is rendered')
+        V, F, C = [], [], []
+        for name, count, props in elements:
+            for _ in range(count):
+                tok = f.readline().split()
+                vals, pos = {}, 0
+                for pr in props:
+                    if isinstance(pr, tuple):
+                        k = int(tok[pos])
+                        vals[pr[1]] = [int(x) for x in tok[pos + 1:pos + 1 + k]]
+                        pos += 1 + k
+                    else:
+                        vals[pr] = float(tok[pos])
+                        pos += 1
+                if name == 'vertex':
+                    V.append((vals['x'], vals['y'], vals['z']))
+                elif name == 'face':
+                    idx = vals.get('vertex_indices', vals.get('vertex_index'))
+                    for j in range(1, len(idx) - 1):
+                        F.append((idx[0], idx[j], idx[j + 1]))
+                        if 'red' in vals:
+                            C.append((vals['red'] / 255.0, vals['green'] / 255.0, vals['blue'] / 255.0))
+        return V, F, (C if len(C) == len(F) else None)
+
+
+def read_mesh(path):
+    """(V, F, face colours or None) of an OFF or ASCII PLY file."""
+    if path.lower().endswith('.ply'):
+        return read_ply(path)
+    V, F = read_off(path)
+    return V, F, None
 
 
 def read_off(path):
@@ -106,7 +160,7 @@ def read_values(path, n):
 def panel_colors(V, F, opts):
     n = len(F)
     if 'ref' in opts:
-        R, RF = read_off(opts['ref'])
+        R, RF, _ = read_mesh(opts['ref'])
         if len(RF) != n:
             raise SystemExit('ref mesh has another number of faces')
         a, b = face_areas(V, F), face_areas(R, RF)
@@ -120,7 +174,7 @@ def panel_colors(V, F, opts):
     if 'density' in opts:
         # log of the face density relative to the mean density sum(P)/sum(area)
         p = read_values(opts['density'], n)
-        a = face_areas(*read_off(opts['area_of'])) if 'area_of' in opts else face_areas(V, F)
+        a = face_areas(*read_mesh(opts['area_of'])[:2]) if 'area_of' in opts else face_areas(V, F)
         mean = sum(p) / sum(a)
         rng = float(opts.get('range', 1.5))
         return [lerp_colors(DIVERGING, 0.5 + 0.5 * math.log(max(pi / max(ai, 1e-300) / mean, 1e-300)) / rng)
@@ -157,7 +211,7 @@ def look_at_dense(V, F, opts):
     n = len(F)
     p = read_values(opts['density'], n)
     ref = opts.get('look_ref', opts.get('area_of'))
-    a = face_areas(*read_off(ref)) if ref else face_areas(V, F)
+    a = face_areas(*read_mesh(ref)[:2]) if ref else face_areas(V, F)
     rho = [pi / max(ai, 1e-300) for pi, ai in zip(p, a)]
     cut = sorted(rho)[int(0.95 * (n - 1))]
     c = [sum(v[m] for v in V) / len(V) for m in range(3)]
@@ -299,7 +353,7 @@ def main(argv):
     for p, spec in enumerate(panels):
         parts = spec.split(',')
         opts = dict(x.split('=', 1) for x in parts[1:])
-        V, F = read_off(parts[0])
+        V, F, file_colors = read_mesh(parts[0])
         if opts.get('look') == 'dense':
             look_at_dense(V, F, opts)
         markers = []
@@ -308,7 +362,9 @@ def main(argv):
             if opts.get('targets', '0') not in ('0', 'no', 'false'):
                 markers += [(t, 'ring') for _, t in lm]
             markers += [(V[v], 'dot') for v, _ in lm]
-        render_panel(img, depth, W, H, p * pw, pw, V, F, panel_colors(V, F, opts), opts, markers)
+        own = file_colors is not None and not any(k in opts for k in ('ref', 'density', 'values', 'color'))
+        colors = file_colors if own else panel_colors(V, F, opts)
+        render_panel(img, depth, W, H, p * pw, pw, V, F, colors, opts, markers)
     # box-filter down-sampling
     w, h = W // ss, H // ss
     small = bytearray(3 * w * h)

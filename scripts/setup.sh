@@ -6,6 +6,7 @@
 #   bash scripts/setup.sh TARGET...  # deps + configure + build only these targets
 #   DEM_SKIP_DEPS=1 bash scripts/setup.sh   # do not touch the system packages
 #   DEM_BUILD_DIR=/tmp/b bash scripts/setup.sh  # other build directory
+#   DEM_FORMAT_CHECKS=1 bash scripts/setup.sh   # also the file-format readers of the tests
 #
 # Idempotent: when every package is installed and the build is up to date it
 # only runs `dpkg -s` and an incremental `cmake --build` (a few seconds).
@@ -18,7 +19,13 @@ JOBS="${DEM_JOBS:-$(nproc 2>/dev/null || echo 2)}"
 # The build dependencies. The documentation tools (doxygen, libjs-mathjax) are
 # installed by scripts/build_docs.sh, which is the only command that needs them.
 PACKAGES=(libcgal-dev libeigen3-dev libboost-dev libgmp-dev libmpfr-dev
-          libsuitesparse-dev libopenblas0-serial cmake g++ ccache)
+          libsuitesparse-dev libopenblas0-serial cmake g++ ccache
+          zlib1g-dev)  # zlib: GIfTI arrays in the GZipBase64Binary encoding
+# Third-party readers of the test test_formats_third_party (skipped without
+# them): installed too when DEM_FORMAT_CHECKS=1 (CI sets it).
+if [[ "${DEM_FORMAT_CHECKS:-0}" == 1 ]]; then
+  PACKAGES+=(python3-nibabel python3-vtk9 python3-meshio gifti-bin)
+fi
 
 configure_and_build() {
   # Configure only once (or when the cache is gone): re-running cmake on an

@@ -11,6 +11,7 @@
 #include <sys/resource.h> // getrusage
 
 #include <cmath>
+#include <sstream>
 
 namespace dem_cli {
 
@@ -55,11 +56,21 @@ std::string usage_text()
     "  --mobius                   spherical-conformal: apply the Moebius area correction\n"
     "  --output FILE              the mapped mesh (same connectivity, vertices on the domain)\n"
     "  --metrics FILE             JSON metrics; a one-line summary always goes to stdout\n"
+    "  --output-format F          freesurfer | gifti | ply | vtk | vtp | obj | off | stl | ts (default: by extension)\n"
+    "  --color-by Q               darea | mu | density | population: colours of .ply/.vtk/.vtp (default darea)\n"
+    "  --output-input-colored FILE  the input surface coloured by the same quantity (.ply, .vtk, .vtp)\n"
+    "  --vertex-population FILE   one positive value per vertex (FreeSurfer curv, GIfTI data array or text);\n"
+    "                             face population = face area x mean of its corners' values\n"
+    "  --output-scale S           multiply the written positions by S (FreeSurfer spheres: 100)\n"
     "  --quiet                    no progress messages on stderr\n"
     "  --repair                   repair a polygon soup first (merge duplicated vertices, remove\n"
     "                             duplicated and degenerate faces, orient consistently, keep the\n"
     "                             largest component) and print what changed; off by default\n"
-    "  --help, --version          usage / the build's sparse solver\n"
+    "  --help, --version          usage (dem METHOD --help: that method's options, defaults, examples) / version\n"
+    "input formats: .off .obj .ply .stl .ts, FreeSurfer triangle surfaces (lh.white, ...), GIfTI .surf.gii\n"
+    "output formats (--output, by extension): .ply with per-face population, density_ratio, log_area_ratio,\n"
+    "  abs_mu and colours; .vtk/.vtp with the same cell data; .obj with texture coordinates; .gii;\n"
+    "  FreeSurfer (no extension, lh.* / rh.*, or --output-format freesurfer); .off .stl .ts (positions)\n"
     "exit status: 0 done; 2 usage error (also: unsupported output format, an output that is an input);\n"
     "             3 invalid input (also: an output directory that is missing or not writable);\n"
     "             4 the method failed: fold-overs left, stalled, or a numerical failure (says which;\n"
@@ -74,6 +85,71 @@ std::string usage_text()
   return text;
 }
 
+Method_defaults method_defaults(Method m)
+{
+  switch(m) {
+  case Method::SDEM: return {0.1, 1e-3, 200};
+  case Method::LSDEM: return {0.01, 1e-3, 200};
+  case Method::EDEM: return {0.1, 1e-3, 300};
+  case Method::EDEQ: return {0.1, 1e-5, 300};
+  case Method::TDEM: case Method::TOROIDAL_PARAMETERIZATION: return {0.1, 1e-2, 1000};
+  default: return {};
+  }
+}
+
+std::string method_help_text(Method m)
+{
+  const Method_defaults d = method_defaults(m);
+  const std::string name = method_name(m);
+  std::ostringstream o;
+  o << "usage: dem " << name << " INPUT [options]\n";
+  switch(m) {
+  case Method::SPHERICAL_CONFORMAL: o << "  conformal map onto the unit sphere (genus 0)\n"
+                                       "  --mobius                 apply the Moebius area correction (default off)\n"; break;
+  case Method::ELLIPSOIDAL_CONFORMAL: o << "  conformal map onto an ellipsoid (genus 0)\n"
+                                         "  --radii A B C            the ellipsoid (default: from the mesh's principal axes)\n"
+                                         "  --optimize-radii         optimize a, b, c (default off)\n"; break;
+  case Method::ELLIPSOIDAL_QUASICONFORMAL: o << "  landmark-matching quasi-conformal map onto an ellipsoid\n"
+                                              "  --landmarks FILE         required: lines \"vertex x y z\"\n"
+                                              "  --radii A B C            the ellipsoid\n"
+                                              "  --lambda L               landmark weight (default 1)\n"; break;
+  case Method::SDEM: o << "  spherical density-equalizing map\n"; break;
+  case Method::LSDEM: o << "  landmark-aligned spherical density-equalizing map\n"
+                         "  --landmarks FILE         required: lines \"vertex x y z\"\n"
+                         "  --alpha A --beta B --gamma G  density, harmonic, landmark weights (default 1, 2, 5)\n"; break;
+  case Method::EDEM: o << "  ellipsoidal density-equalizing map\n  --radii A B C            required: the ellipsoid\n"; break;
+  case Method::EDEQ: o << "  ellipsoidal density-equalizing quasi-conformal map\n"
+                        "  --radii A B C            required: the initial ellipsoid\n"
+                        "  --alpha A                Beltrami weight (default 5)\n"; break;
+  case Method::TDEM: o << "  toroidal density-equalizing map of a mesh lying on the torus\n"
+                        "  --torus R r              required: the radii, R > r > 0\n"; break;
+  case Method::TOROIDAL_PARAMETERIZATION: o << "  density-equalizing map of any genus-one mesh onto the torus\n"
+                                             "  --torus R r              required: the radii, R > r > 0\n"
+                                             "  --cut-edges FILE         cut graph (vertex pairs; default automatic)\n"; break;
+  default: break;
+  }
+  if(d.tolerance > 0)
+    o << "  --time-step DT            default " << d.time_step << "\n"
+      << "  --tolerance EPS           stop when the density error is below EPS (default " << d.tolerance << ")\n"
+      << "  --max-iterations N        default " << d.max_iterations << "\n";
+  o << "  --population FILE|area    one value per face (default area)   --vertex-population FILE  one per vertex\n"
+       "  --output FILE  --output-format F  --color-by darea|mu|density|population (default darea)\n"
+       "  --output-input-colored FILE  --output-scale S  --metrics FILE  --quiet\n"
+       "read: .off .obj .ply .stl .ts, FreeSurfer triangle surfaces, .gii\n"
+       "written: .ply .vtk .vtp (face data + colours), .obj (texture coordinates), .gii, FreeSurfer, .off .stl .ts\n"
+       "examples:\n";
+  const std::string extra = m == Method::TDEM || m == Method::TOROIDAL_PARAMETERIZATION ? " --torus 3 1"
+                            : m == Method::EDEM || m == Method::EDEQ ? " --radii 2 1 1"
+                            : m == Method::LSDEM || m == Method::ELLIPSOIDAL_QUASICONFORMAL ? " --landmarks landmarks.txt"
+                            : "";
+  const std::string mesh = m == Method::TDEM || m == Method::TOROIDAL_PARAMETERIZATION ? "torus.off" : "bumpy.off";
+  o << "  dem " << name << " " << mesh << extra << " --output out.ply --color-by darea --output-input-colored in.ply\n";
+  if(domain_of(m) == Domain::TORUS)
+    o << "  dem " << name << " " << mesh << extra << " --population pop.txt --output out.obj --metrics m.json\n";
+  else
+    o << "  dem " << name << " lh.white" << extra << " --output lh.sphere.gii --vertex-population lh.thickness --quiet\n";
+  return o.str();
+}
 
 namespace internal {
 
@@ -87,7 +163,15 @@ inline bool to_number(const std::string& s, double& v)
 Parse_status parse_command_line(const std::vector<std::string>& args, Options& opt, std::string& error)
 {
   for(const std::string& a : args)
-    if(a == "--help" || a == "-h") return Parse_status::HELP;
+    if(a == "--help" || a == "-h") {
+      if(!args.empty())
+        for(const Method_entry& e : method_table())
+          if(args[0] == e.name) {
+            opt.method = e.method;
+            opt.method_help = true;
+          }
+      return Parse_status::HELP;
+    }
   for(const std::string& a : args)
     if(a == "--version") return Parse_status::VERSION;
   std::vector<std::string> positional;
@@ -135,6 +219,14 @@ Parse_status parse_command_line(const std::vector<std::string>& args, Options& o
     else if(a == "--cut-edges") ok = string_value(opt.cut_edges);
     else if(a == "--output") ok = string_value(opt.output);
     else if(a == "--metrics") ok = string_value(opt.metrics);
+    else if(a == "--output-format") ok = string_value(opt.output_format);
+    else if(a == "--color-by") ok = string_value(opt.color_by);
+    else if(a == "--output-input-colored") ok = string_value(opt.output_input_colored);
+    else if(a == "--vertex-population") ok = string_value(opt.vertex_population);
+    else if(a == "--output-scale") {
+      ok = scalar(opt.output_scale);
+      if(ok && !(*opt.output_scale > 0)) { error = "option --output-scale: must be positive"; ok = false; }
+    }
     else if(a == "--radii") { std::array<double, 3> r; ok = numbers(3, r.data()); if(ok) opt.radii = r; }
     else if(a == "--torus") { std::array<double, 2> r; ok = numbers(2, r.data()); if(ok) opt.torus = r; }
     else if(a == "--optimize-radii") opt.optimize_radii = true;
@@ -204,6 +296,14 @@ Parse_status parse_command_line(const std::vector<std::string>& args, Options& o
   }
   if((m == Method::TDEM || m == Method::TOROIDAL_PARAMETERIZATION) && !opt.torus) {
     error = std::string("method ") + method_name(m) + " needs --torus R r";
+    return Parse_status::ERROR;
+  }
+  if(!opt.vertex_population.empty() && !opt.population.empty()) {
+    error = "--population and --vertex-population are exclusive (one population per run)";
+    return Parse_status::ERROR;
+  }
+  if(opt.color_by != "darea" && opt.color_by != "mu" && opt.color_by != "density" && opt.color_by != "population") {
+    error = "option --color-by: \"" + opt.color_by + "\" is not one of darea, mu, density, population";
     return Parse_status::ERROR;
   }
   if(opt.max_iterations && *opt.max_iterations == 0) {

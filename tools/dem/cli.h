@@ -79,7 +79,25 @@ struct Options
   bool repair = false; // --repair: PMP soup repair before validation (soup_repair.h)
   std::optional<double> time_step, tolerance, alpha, beta, gamma, lambda;
   std::optional<std::size_t> max_iterations;
+  // formats (dem_formats.h)
+  std::string output_format;        // --output-format: overrides the extension of --output
+  std::string color_by = "darea";   // --color-by darea|mu|density|population
+  std::string output_input_colored; // --output-input-colored FILE (.ply/.vtk/.vtp)
+  std::string vertex_population;    // --vertex-population FILE (curv, .gii or text; one value per vertex)
+  std::optional<double> output_scale; // --output-scale S: multiply the written positions (FreeSurfer spheres: 100)
+  bool method_help = false;         // `dem METHOD --help`
 };
+
+/// The defaults of a method's iterative options (0 = not iterative / not used).
+struct Method_defaults
+{
+  double time_step = 0, tolerance = 0;
+  std::size_t max_iterations = 0;
+};
+Method_defaults method_defaults(Method m);
+
+/// `dem METHOD --help`: the method's options with their defaults, the formats and two examples.
+std::string method_help_text(Method m);
 
 /// `dem --version`: the package and the build's default sparse solver.
 std::string version_text();

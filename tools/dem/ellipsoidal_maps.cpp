@@ -88,18 +88,18 @@ Run run_edem(Problem& pb, const Options& opt, bool quasiconformal)
   const auto common = NP::combine(NP::ellipsoid_radii(radii), NP::initial_map(init),
                                   NP::face_population_map(pb.population_map),
                                   NP::progress_callback(progress.callback()),
-                                  NP::time_step(opt.time_step.value_or(0.1)));
+                                  NP::time_step(opt.time_step.value_or(method_defaults(opt.method).time_step)));
   if(!quasiconformal)
     run.report = DEM::ellipsoidal_density_equalizing_map(
         pb.mesh, out,
-        NP::combine(common, NP::stopping_tolerance(opt.tolerance.value_or(1e-3)),
-                    CGAL::parameters::number_of_iterations(opt.max_iterations.value_or(300))));
+        NP::combine(common, NP::stopping_tolerance(opt.tolerance.value_or(method_defaults(opt.method).tolerance)),
+                    CGAL::parameters::number_of_iterations(opt.max_iterations.value_or(method_defaults(opt.method).max_iterations))));
   else
     run.report = DEM::ellipsoidal_density_equalizing_quasiconformal_map(
         pb.mesh, out,
         NP::combine(common, NP::beltrami_weight(opt.alpha.value_or(5.)),
-                    NP::stopping_tolerance(opt.tolerance.value_or(1e-5)),
-                    CGAL::parameters::number_of_iterations(opt.max_iterations.value_or(300))));
+                    NP::stopping_tolerance(opt.tolerance.value_or(method_defaults(opt.method).tolerance)),
+                    CGAL::parameters::number_of_iterations(opt.max_iterations.value_or(method_defaults(opt.method).max_iterations))));
   watch.stop(run.seconds, run.cpu_seconds);
   run.Y0 = to_matrix(pb.mesh, init);
   run.Y = to_matrix(pb.mesh, out);

@@ -12,6 +12,10 @@
 // which. On 4 the metrics are still written, the output mesh is not. On 3 and
 // 4 an output file of an earlier run is deleted (output_files.h).
 //
+// Formats (dem_formats.h) are decided before the work: an unknown output
+// extension is a usage error (2), an unreadable input format invalid input (3).
+// Stages that last more than a second are named on stderr (dem_stages.h).
+//
 // The input is read as a polygon soup and validated on index arrays before a
 // halfedge structure is built, so that non-manifold edges or open boundaries,
 // which a Surface_mesh cannot even store, are reported as invalid input.
@@ -19,7 +23,10 @@
 #include "commands.h"
 #include "maps.h"
 #include "metrics.h"
+#include "dem_formats.h"
 #include "output_files.h"
+
+#include <CGAL/Density_equalizing_maps/parameters.h>
 
 #include <cstdio>
 #include <exception>
@@ -29,6 +36,8 @@
 #include <vector>
 
 namespace dem_cli {
+
+namespace NP = CGAL::Density_equalizing_maps::parameters;
 
 namespace {
 
@@ -55,22 +64,40 @@ int map_command(const std::vector<std::string>& args)
   {
     std::string error;
     const Parse_status s = parse_command_line(args, opt, error);
-    if(s == Parse_status::HELP) { std::cout << usage_text(); return 0; }
+    if(s == Parse_status::HELP) { std::cout << (opt.method_help ? method_help_text(opt.method) : usage_text()); return 0; }
     if(s == Parse_status::VERSION) { std::cout << version_text() << std::endl; return 0; }
     if(s == Parse_status::ERROR) {
       std::cerr << "dem: " << error << "\n(dem --help prints the usage)\n";
       return 2;
     }
   }
+  // Every file format is decided before any computation.
+  Output_kind output_format = Output_kind::POSITIONS, colored_format = Output_kind::PLY;
+  try {
+    if(!opt.output_format.empty() && opt.output.empty()) throw Format_usage_error("--output-format needs --output FILE");
+    if(!opt.output.empty()) output_format = output_kind(opt.output, opt.output_format);
+    if(!opt.output_input_colored.empty()) colored_format = colored_output_kind(opt.output_input_colored);
+    if(output_format == Output_kind::OBJ && domain_of(opt.method) == Domain::ELLIPSOID && opt.output_scale)
+      throw Format_usage_error("--output-scale with an OBJ output of an ellipsoidal map is not supported");
+  } catch(const Format_usage_error& e) {
+    std::cerr << "dem: " << e.what() << "\n";
+    return 2;
+  }
+
+  Stage_progress stages(opt.quiet);
+  set_stage_progress(&stages);
+  struct Unset { ~Unset() { set_stage_progress(nullptr); } } unset;
   // The files this run reads: no output may be one of them, and a stale
   // output is never deleted if it is one of them.
   std::vector<std::string> inputs = {opt.input, opt.landmarks, opt.cut_edges};
   if(opt.population != "area") inputs.push_back(opt.population);
+  inputs.push_back(opt.vertex_population);
   if(!opt.output.empty() && (opt.output == opt.metrics || same_file(opt.output, opt.metrics))) {
     std::cerr << "dem: --output and --metrics name the same file " << opt.output << "\n";
     return 2;
   }
-  for(const Output_problem& p : {output_path_problem("--output", opt.output, true, inputs),
+  for(const Output_problem& p : {output_path_problem("--output", opt.output, false, inputs),
+                                 output_path_problem("--output-input-colored", opt.output_input_colored, false, inputs),
                                  output_path_problem("--metrics", opt.metrics, false, inputs)})
     if(p) {
       std::cerr << "dem: " << p.message << "\n";
@@ -81,6 +108,7 @@ int map_command(const std::vector<std::string>& args)
   auto fail = [&](int status, bool metrics_written) {
     std::string deleted;
     if(remove_stale_output(opt.output, inputs)) deleted += " " + opt.output;
+    if(remove_stale_output(opt.output_input_colored, inputs)) deleted += " " + opt.output_input_colored;
     if(!metrics_written && remove_stale_output(opt.metrics, inputs)) deleted += " " + opt.metrics;
     if(!deleted.empty()) std::cerr << "dem: deleted the output of an earlier run:" << deleted << "\n";
     return status;
@@ -89,9 +117,14 @@ int map_command(const std::vector<std::string>& args)
   Problem pb;
   Run run;
   try {
+    input_kind(opt.input); // an unreadable format is reported before the mesh is parsed
+    stages.begin("reading and validating " + opt.input);
     read_mesh(opt, pb);
     read_sidecars(opt, pb);
+    stages.begin(std::string("mapping (") + method_name(opt.method) + ")",
+                 opt.tolerance.value_or(method_defaults(opt.method).tolerance));
     run = run_map(pb, opt);
+    stages.begin("metrics");
   } catch(const DEM::Invalid_input& e) {
     std::cerr << "dem: invalid input: " << e.what() << "\n";
     return fail(3, false);
@@ -145,8 +178,43 @@ int map_command(const std::vector<std::string>& args)
               << (opt.metrics.empty() ? "no metrics requested" : "metrics written to " + opt.metrics) << "\n";
     return fail(4, true);
   }
-  if(!opt.output.empty() && !write_output(opt.output, run.Y, pb.F)) {
-    std::cerr << "dem: cannot write " << opt.output << "\n";
+  if(opt.output.empty() && opt.output_input_colored.empty()) return 0;
+  try {
+    const double scale = opt.output_scale.value_or(1.);
+    Point_map out = fresh_point_map(pb.mesh, "v:dem_output");
+    for(Vertex v : pb.mesh.vertices())
+      out[v] = Point_3(scale * run.Y(v.idx(), 0), scale * run.Y(v.idx(), 1), scale * run.Y(v.idx(), 2));
+    const DIO::Color_by by = DIO::color_by_from_name(opt.color_by);
+    DIO::Face_data data;
+    const bool colored = output_format == Output_kind::PLY || output_format == Output_kind::VTK ||
+                         output_format == Output_kind::VTP || !opt.output_input_colored.empty();
+    if(colored) data = DIO::face_data(pb.mesh, out, NP::face_population_map(pb.population_map));
+    if(!opt.output.empty()) {
+      stages.begin("writing " + opt.output);
+      Texture_domain<Mesh> domain;
+      if(domain_of(opt.method) == Domain::SPHERE) domain.radii = {{scale, scale, scale}};
+      if(domain_of(opt.method) == Domain::ELLIPSOID && run.report.radii.size() == 3)
+        domain = Texture_domain<Mesh>{Texture_domain<Mesh>::ELLIPSOID, {{run.report.radii[0], run.report.radii[1], run.report.radii[2]}}};
+      if(domain_of(opt.method) == Domain::TORUS) {
+        domain.kind = Texture_domain<Mesh>::TORUS;
+        domain.R = (*opt.torus)[0];
+        domain.r = (*opt.torus)[1];
+        domain.flat = pb.mesh.property_map<Vertex, CGAL::Simple_cartesian<double>::Point_2>("v:dem_flat").first;
+        domain.offsets = pb.mesh.property_map<Mesh::Halfedge_index, std::array<int, 2> >("h:dem_offset").first;
+      }
+      write_output_atomically(opt.output, [&](const std::string& f) {
+        write_mapped_mesh(output_format, f, pb.mesh, out, data, by, domain);
+      });
+    }
+    if(!opt.output_input_colored.empty()) {
+      stages.begin("writing " + opt.output_input_colored);
+      write_output_atomically(opt.output_input_colored, [&](const std::string& f) {
+        write_mapped_mesh(colored_format, f, pb.mesh, pb.mesh.points(), data, by, Texture_domain<Mesh>());
+      });
+    }
+    stages.end();
+  } catch(const DEM::Invalid_input& e) {
+    std::cerr << "dem: cannot write the output: " << e.what() << "\n";
     return fail(3, true);
   }
   return 0;

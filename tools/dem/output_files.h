@@ -15,6 +15,8 @@
 #ifndef DEM_TOOL_OUTPUT_FILES_H
 #define DEM_TOOL_OUTPUT_FILES_H
 
+#include <CGAL/Density_equalizing_maps/Map_report.h> // Invalid_input
+
 #include <stdlib.h> // mkstemps
 #include <unistd.h> // close
 
@@ -22,6 +24,7 @@
 #include <cctype>
 #include <cerrno>
 #include <cstring>
+#include <exception>
 #include <filesystem>
 #include <string>
 #include <system_error>
@@ -153,6 +156,21 @@ bool write_atomically(const std::string& path, const Writer& write, std::string&
     return false;
   }
   return true;
+}
+
+/// write_atomically() for a writer that reports failure by throwing
+/// (`Invalid_input` and the like): the temporary file is removed and an
+/// `Invalid_input` naming `path` is thrown.
+template <class ThrowingWriter>
+void write_output_atomically(const std::string& path, const ThrowingWriter& write)
+{
+  std::string what;
+  std::string error;
+  const bool ok = write_atomically(path, [&](const std::string& f) {
+    try { write(f); return true; } catch(const std::exception& e) { what = e.what(); return false; }
+  }, error);
+  if(!ok)
+    throw CGAL::Density_equalizing_maps::Invalid_input("cannot write " + path + ": " + (what.empty() ? error : what));
 }
 
 /// After a failed run: deletes `path` if a regular file by that name exists

@@ -3,6 +3,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 
 #include "problem.h"
+#include "dem_formats.h"
 #include "mesh_input.h"
 #include "output_files.h"
 
@@ -10,7 +11,6 @@
 #include <CGAL/Density_equalizing_maps/internal/operators.h>
 #include <CGAL/Density_equalizing_maps/internal/validation.h>
 
-#include <CGAL/IO/polygon_soup_io.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 
 #include <unistd.h> // isatty
@@ -60,9 +60,17 @@ Progress::~Progress()
   if(printed_ && tty_) std::cerr << std::endl;
 }
 
+namespace {
+Stage_progress* stage_progress_ = nullptr;
+}
+
+void set_stage_progress(Stage_progress* s) { stage_progress_ = s; }
+Stage_progress* stage_progress() { return stage_progress_; }
+
 bool Progress::operator()(std::size_t iteration, double error)
 {
   if(quiet_) return true;
+  if(stage_progress_) return stage_progress_->iteration(iteration, error);
   const double t = seconds_since(start_);
   if(t > 1.0 && t - last_ >= 1.0) {
     // one line per second; rewritten in place on a terminal
@@ -90,12 +98,13 @@ Point_map fresh_point_map(Mesh& mesh, const std::string& name)
   return mesh.add_property_map<Vertex, Point_3>(name, Point_3(0, 0, 0)).first;
 }
 
-/// Reads and validates the mesh (exit 3 on failure, through Invalid_input).
+/// Reads and validates the mesh (exit 3 on failure, through Invalid_input): FreeSurfer
+/// and GIfTI surfaces with the package's readers, the rest with CGAL's (dem_formats.h).
 void read_mesh(const Options& opt, Problem& pb)
 {
   std::vector<Point_3> points;
   std::vector<std::vector<std::size_t>> polygons;
-  read_input_soup(opt.input, points, polygons);
+  read_surface(opt.input, points, polygons);
   if(opt.repair) {
     const Soup_repairs r = repair_soup<Mesh>(points, polygons);
     pb.repairs = r.summary();
@@ -127,6 +136,15 @@ void read_sidecars(const Options& opt, Problem& pb)
   const std::size_t nv = std::size_t(pb.X.rows()), nf = std::size_t(pb.F.rows());
   if(!opt.population.empty() && opt.population != "area") {
     const std::vector<double> p = DEM::IO::read_face_values(opt.population, nf);
+    pb.population = Eigen::Map<const DI::Vector>(p.data(), Eigen::Index(p.size()));
+    pb.explicit_population = true;
+  } else if(!opt.vertex_population.empty()) {
+    DEM::IO::Triangle_soup soup;
+    for(Eigen::Index i = 0; i < pb.X.rows(); ++i) soup.points.push_back({{pb.X(i, 0), pb.X(i, 1), pb.X(i, 2)}});
+    for(Eigen::Index k = 0; k < pb.F.rows(); ++k)
+      soup.faces.push_back({{std::size_t(pb.F(k, 0)), std::size_t(pb.F(k, 1)), std::size_t(pb.F(k, 2))}});
+    const std::vector<double> p = face_population_from_vertex_density(
+      soup, read_vertex_values(opt.vertex_population, nv), opt.vertex_population);
     pb.population = Eigen::Map<const DI::Vector>(p.data(), Eigen::Index(p.size()));
     pb.explicit_population = true;
   } else {

@@ -10,6 +10,7 @@
 #define DEM_TOOL_PROBLEM_H
 
 #include "cli.h"
+#include "dem_stages.h"
 
 #include <CGAL/Density_equalizing_maps/Map_report.h>
 #include <CGAL/Density_equalizing_maps/internal/mesh_arrays.h>
@@ -64,7 +65,13 @@ struct Run
   std::vector<std::string> notes;
 };
 
-/// Prints iterations on stderr once a run has lasted more than a second.
+/// The stage reporter of the running command, if any: Progress forwards the
+/// iterations to it (stage name, error against tolerance, estimate).
+void set_stage_progress(Stage_progress* s);
+Stage_progress* stage_progress();
+
+/// Prints iterations on stderr once a run has lasted more than a second
+/// (through the stage reporter when one is set).
 class Progress
 {
 public:

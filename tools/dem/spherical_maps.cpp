@@ -42,15 +42,15 @@ Run run_sdem(Problem& pb, const Options& opt, bool landmark_aligned)
   if(!landmark_aligned) {
     run.report = DEM::spherical_density_equalizing_map(
         pb.mesh, out,
-        NP::combine(common, NP::time_step(opt.time_step.value_or(0.1)),
-                    NP::stopping_tolerance(opt.tolerance.value_or(1e-3)),
-                    CGAL::parameters::number_of_iterations(opt.max_iterations.value_or(200))));
+        NP::combine(common, NP::time_step(opt.time_step.value_or(method_defaults(Method::SDEM).time_step)),
+                    NP::stopping_tolerance(opt.tolerance.value_or(method_defaults(Method::SDEM).tolerance)),
+                    CGAL::parameters::number_of_iterations(opt.max_iterations.value_or(method_defaults(Method::SDEM).max_iterations))));
   } else {
     run.report = DEM::landmark_aligned_spherical_density_equalizing_map(
         pb.mesh, pb.landmarks, out,
-        NP::combine(common, NP::time_step(opt.time_step.value_or(0.01)),
-                    NP::stopping_tolerance(opt.tolerance.value_or(1e-3)),
-                    CGAL::parameters::number_of_iterations(opt.max_iterations.value_or(200)),
+        NP::combine(common, NP::time_step(opt.time_step.value_or(method_defaults(Method::LSDEM).time_step)),
+                    NP::stopping_tolerance(opt.tolerance.value_or(method_defaults(Method::LSDEM).tolerance)),
+                    CGAL::parameters::number_of_iterations(opt.max_iterations.value_or(method_defaults(Method::LSDEM).max_iterations)),
                     NP::density_weight(opt.alpha.value_or(1.)), NP::harmonic_weight(opt.beta.value_or(2.)),
                     NP::landmark_weight(opt.gamma.value_or(5.))));
   }
