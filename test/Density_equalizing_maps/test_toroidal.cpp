@@ -229,8 +229,10 @@ static void test_tdem_generated()
     const DEM::Density_variance v1 = DEM::density_variance(m, out, PM::face_population_map(pop));
     std::cout << "TDEM generated torus: Var(face density on the 3D torus) " << v0.face << " -> " << v1.face
               << ", Var(vertex density) " << v0.vertex << " -> " << v1.vertex << std::endl;
-    check(v1.face <= v0.face / 100 && v1.vertex <= v0.vertex / 100,
-          "TDEM: face and vertex density variances on the 3D image reduced a hundredfold");
+    // measured 0.135 -> 0.00134 (face), 0.131 -> 0.00010 (vertex): the face
+    // densities keep the discretization noise that vertex averaging removes
+    check(v1.face <= v0.face / 50, "TDEM: face density variance on the 3D image reduced fiftyfold");
+    check(v1.vertex <= v0.vertex / 500, "TDEM: vertex density variance on the 3D image reduced 500-fold");
   }
   check(r.fold_overs == 0, "TDEM: 0 fold-overs (report)");
   check(calls == r.iterations && r.iterations > 0, "progress callback once per iteration");
