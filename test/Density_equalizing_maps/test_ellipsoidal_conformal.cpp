@@ -250,7 +250,7 @@ static int generated_part()
 
 int shared_part()
 {
-  const std::string dir = DEM_DATA_DIR;
+  const std::string dir = dem_test::data_dir();
   Mesh brain;
   if(!std::ifstream(dir + "/brain_landmarks.off") || !CGAL::IO::read_polygon_mesh(dir + "/brain_landmarks.off", brain)) {
     std::cout << "shared data not found in " << dir << ": skipped\n";

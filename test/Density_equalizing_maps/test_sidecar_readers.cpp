@@ -10,6 +10,7 @@
 #include <CGAL/Density_equalizing_maps/IO/sidecar_files.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -148,7 +149,8 @@ int main(int argc, char** argv)
 // --shared (ctest test_sidecar_readers_shared, label shared_data): the shared files parse.
 int shared_part()
 {
-  const std::string dir = DEM_DATA_DIR;
+  const char* env = std::getenv("DEM_TEST_DATA_DIR"); // as dem_test::data_dir()
+  const std::string dir = env ? env : DEM_DATA_DIR;
   if(!std::ifstream(dir + "/brain_landmarks.landmarks.txt")) {
     std::cout << "shared data not found in '" << dir << "': skipped\n";
     return 77;

@@ -21,6 +21,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <iostream>
 #include <limits>
@@ -471,8 +472,12 @@ inline Arrays non_manifold_edge_arrays()
 // ---------------------------------------------------------------------------
 // Shared data (../shared/data, DEM_DATA_DIR)
 
+/// The shared data folder: the environment variable DEM_TEST_DATA_DIR if set
+/// (e.g. `DEM_TEST_DATA_DIR=/nonexistent ctest` checks the suite without the
+/// data, no rebuild needed), else DEM_DATA_DIR (CMake's DEM_SHARED_DATA_DIR).
 inline std::string data_dir()
 {
+  if(const char* dir = std::getenv("DEM_TEST_DATA_DIR")) return dir;
 #ifdef DEM_DATA_DIR
   return DEM_DATA_DIR;
 #else
