@@ -311,24 +311,20 @@ int main()
 
     const std::string bad_landmarks = write_text("bad.lm", "# v x y z\n0 1 0 0\n99999 0 1 0\n");
     r = dem("lsdem \"" + sphere_off + "\" --landmarks \"" + bad_landmarks + "\"");
-    if(contains(r.err, "not available"))
-      std::cerr << "note: lsdem not available in this build, landmark range check done on ellipsoidal-quasiconformal\n";
-    else
-      expect(r, 3, "landmark index out of range", "out of range");
+    expect(r, 3, "landmark index out of range", "out of range");
     const std::string malformed_landmarks = write_text("malformed.lm", "0 1 0 0\n5 0 1\n");
     r = dem("lsdem \"" + sphere_off + "\" --landmarks \"" + malformed_landmarks + "\"");
-    if(!contains(r.err, "not available")) expect(r, 3, "malformed landmark line", "line 2");
+    expect(r, 3, "malformed landmark line", "line 2");
   }
 
-  // --- a density-equalizing run with a prescribed population, when available
+  // --- a density-equalizing run with a prescribed population
   {
     std::string pop;
     for(std::size_t k = 0; k < sphere.T.size(); ++k) pop += (sphere.V[sphere.T[k][0]][2] > 0.3 ? "4\n" : "1\n");
     const std::string pop_file = write_text("cap.pop", pop);
     Result r = dem("sdem \"" + sphere_off + "\" --population \"" + pop_file + "\" --max-iterations 30 --output \"" +
                    output + "\" --metrics \"" + metrics + "\"");
-    if(contains(r.err, "not available")) std::cerr << "note: sdem not available in this build\n";
-    else if(expect(r, 0, "sdem on an icosphere")) {
+    if(expect(r, 0, "sdem on an icosphere")) {
       auto pt = check_metrics(metrics, "sdem", sphere.V.size(), sphere.T.size());
       check(pt.get<double>("density_var_final", 1e9) < pt.get<double>("density_var_initial", 0),
             "sdem lowers the density variance");
@@ -337,12 +333,11 @@ int main()
     }
   }
 
-  // --- ellipsoid and torus methods, when available
+  // --- ellipsoid and torus methods
   {
     Result r = dem("ellipsoidal-conformal \"" + sphere_off + "\" --radii 2 1 1 --output \"" + output + "\" --metrics \"" +
                    metrics + "\"");
-    if(contains(r.err, "not available")) std::cerr << "note: ellipsoidal-conformal not available in this build\n";
-    else if(expect(r, 0, "ellipsoidal-conformal on an icosphere")) {
+    if(expect(r, 0, "ellipsoidal-conformal on an icosphere")) {
       auto pt = check_metrics(metrics, "ellipsoidal-conformal", sphere.V.size(), sphere.T.size());
       check(pt.get_child_optional("radii") && pt.get_child("radii").size() == 3, "ellipsoidal-conformal radii");
       check_output(output, sphere, ellipsoid_2_1_1_residual, "ellipsoidal-conformal output");
@@ -350,8 +345,8 @@ int main()
     expect(dem("edem \"" + sphere_off + "\""), 2, "edem without --radii", "--radii");
 
     // Exit 4: landmarks asking for a mirror image (orientation reversing) with
-    // a large weight leave fold-overs. The metrics are written, the output is
-    // not. If a future version manages a bijective map anyway, exit 0 is fine.
+    // a large weight leave fold-overs (no orientation-preserving map can meet
+    // them). The metrics are written, the output is not.
     std::string mirror;
     for(std::size_t i = 0; i < sphere.V.size(); i += 3) {
       const P3& p = sphere.V[i];
@@ -364,31 +359,25 @@ int main()
     fs::remove(metrics);
     r = dem("ellipsoidal-quasiconformal \"" + sphere_off + "\" --landmarks \"" + mirror_file +
             "\" --radii 1 1 1 --lambda 100 --output \"" + output + "\" --metrics \"" + metrics + "\"");
-    if(r.code == 4) {
+    if(expect(r, 4, "mirrored landmarks: no fold-over-free map", "fold-over")) {
       check(!fs::exists(output), "exit 4: no output written");
       check(fs::exists(metrics), "exit 4: metrics written");
       check(contains(r.err, "fold-over"), "exit 4: stderr explains: " + r.err);
       boost::property_tree::ptree pt;
       try { boost::property_tree::read_json(metrics, pt); } catch(...) { check(false, "exit 4: metrics parse"); }
       check(pt.get<std::size_t>("fold_overs", 0) > 0, "exit 4: metrics report the fold-overs");
-    } else if(!contains(r.err, "not available")) {
-      expect(r, 0, "mirrored landmarks (exit 4 or 0 expected)");
-      std::cerr << "note: mirrored landmarks gave a bijective map; exit 4 not exercised\n";
     }
 
     const Soup ring = torus(3, 1, 24, 12);
     const std::string ring_off = write_off("ring.off", ring);
     expect(dem("tdem \"" + ring_off + "\""), 2, "tdem without --torus", "--torus");
     r = dem("tdem \"" + ring_off + "\" --torus 3 1 --output \"" + output + "\" --metrics \"" + metrics + "\"");
-    if(contains(r.err, "not available")) std::cerr << "note: tdem not available in this build\n";
-    else {
-      if(expect(r, 0, "tdem on a torus")) {
-        check_metrics(metrics, "tdem", ring.V.size(), ring.T.size());
-        check_output(output, ring, torus_3_1_residual, "tdem output");
-      }
-      expect(dem("tdem \"" + sphere_off + "\" --torus 3 1"), 3, "genus-0 mesh for a torus method", "genus");
-      expect(dem("tdem \"" + ring_off + "\" --torus 1 3"), 3, "R < r");
+    if(expect(r, 0, "tdem on a torus")) {
+      check_metrics(metrics, "tdem", ring.V.size(), ring.T.size());
+      check_output(output, ring, torus_3_1_residual, "tdem output");
     }
+    expect(dem("tdem \"" + sphere_off + "\" --torus 3 1"), 3, "genus-0 mesh for a torus method", "genus");
+    expect(dem("tdem \"" + ring_off + "\" --torus 1 3"), 3, "R < r", "R > r");
   }
 
   fs::remove_all(tmp_dir);

@@ -4,11 +4,13 @@
 //
 // The sidecar file readers (IO/sidecar_files.h): accepted syntax (comments,
 // blank lines, CRLF, blanks around '='), every rejection with the line number
-// in the message, and the shared data files when available.
+// in the message, the file-name overloads on files the test writes; with
+// `--shared` (ctest test_sidecar_readers_shared) the shared data files.
 
 #include <CGAL/Density_equalizing_maps/IO/sidecar_files.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -41,8 +43,11 @@ void expect_error(F f, const std::string& needle, const std::string& what)
 
 } // namespace
 
-int main()
+int shared_part();
+
+int main(int argc, char** argv)
 {
+  if(argc > 1 && std::string(argv[1]) == "--shared") return shared_part();
   // --- face values
   {
     std::istringstream in("# population\n1.5\n\n  2 # two\r\n3e-2\n");
@@ -108,22 +113,53 @@ int main()
                  "repeated key");
   }
 
-  // --- the shared files parse (skipped silently without the data folder)
-#ifdef DEM_DATA_DIR
+  // --- the file-name overloads, on files written here (the test runs in its build folder)
   {
-    const std::string dir = DEM_DATA_DIR;
-    if(std::ifstream(dir + "/brain_landmarks.landmarks.txt")) {
-      check(IO::read_landmarks(dir + "/brain_landmarks.landmarks.txt", 12502).size() == 22, "brain landmarks");
-      check(IO::read_face_values(dir + "/brain_landmarks.population.txt", 25000).size() == 25000, "brain population");
-      check(IO::read_vertex_pairs(dir + "/bob_genus1.cut_edges.txt", 5344).size() > 10, "bob cut edges");
-      const auto p = IO::read_numeric_parameters(dir + "/edeq_ellipsoid2.params.txt");
-      check(p.count("a0") && p.count("b0") && p.count("c0"), "edeq parameters");
-    } else {
-      std::cout << "shared data not found: shared-file checks skipped\n";
+    auto write = [](const std::string& name, const std::string& text) { std::ofstream(name) << text; };
+    write("dem_test_sidecar.population.txt", "# two faces\n1\n2.5\n");
+    write("dem_test_sidecar.landmarks.txt", "3 0 0 1\n");
+    write("dem_test_sidecar.cut_edges.txt", "0 1\n1 2\n");
+    write("dem_test_sidecar.params.txt", "R=3\nr = 1\n");
+    const std::vector<double> v = IO::read_face_values("dem_test_sidecar.population.txt", 2);
+    check(v.size() == 2 && v[1] == 2.5, "read_face_values(file)");
+    const auto l = IO::read_landmarks("dem_test_sidecar.landmarks.txt", 4);
+    check(l.size() == 1 && l[0].vertex == 3 && l[0].target[2] == 1, "read_landmarks(file)");
+    const auto e = IO::read_vertex_pairs("dem_test_sidecar.cut_edges.txt", 3);
+    check(e.size() == 2 && e[1].first == 1 && e[1].second == 2, "read_vertex_pairs(file)");
+    const auto p = IO::read_numeric_parameters("dem_test_sidecar.params.txt");
+    check(p.size() == 2 && p.at("R") == 3 && p.at("r") == 1, "read_numeric_parameters(file)");
+    // the file name is the source named in the messages
+    expect_error([] { IO::read_face_values("dem_test_sidecar.population.txt", 3); }, "dem_test_sidecar.population.txt",
+                 "face count from a file");
+    expect_error([] { IO::read_landmarks("dem_test_sidecar.landmarks.txt", 3); }, "dem_test_sidecar.landmarks.txt",
+                 "landmark index from a file");
+    for(const char* missing : {"dem_test_no_such_file.txt"}) {
+      expect_error([&] { IO::read_face_values(missing, 0); }, "cannot open dem_test_no_such_file.txt", "missing file");
+      expect_error([&] { IO::read_landmarks(missing, 0); }, "cannot open", "missing landmark file");
+      expect_error([&] { IO::read_vertex_pairs(missing, 0); }, "cannot open", "missing cut-edge file");
+      expect_error([&] { IO::read_numeric_parameters(missing); }, "cannot open", "missing parameter file");
     }
   }
-#endif
 
+  if(failures) { std::cerr << failures << " failure(s)\n"; return 1; }
+  std::cout << "test_sidecar_readers: all checks passed\n";
+  return 0;
+}
+
+// --shared (ctest test_sidecar_readers_shared, label shared_data): the shared files parse.
+int shared_part()
+{
+  const char* env = std::getenv("DEM_TEST_DATA_DIR"); // as dem_test::data_dir()
+  const std::string dir = env ? env : DEM_DATA_DIR;
+  if(!std::ifstream(dir + "/brain_landmarks.landmarks.txt")) {
+    std::cout << "shared data not found in '" << dir << "': skipped\n";
+    return 77;
+  }
+  check(IO::read_landmarks(dir + "/brain_landmarks.landmarks.txt", 12502).size() == 22, "brain landmarks");
+  check(IO::read_face_values(dir + "/brain_landmarks.population.txt", 25000).size() == 25000, "brain population");
+  check(IO::read_vertex_pairs(dir + "/bob_genus1.cut_edges.txt", 5344).size() > 10, "bob cut edges");
+  const auto p = IO::read_numeric_parameters(dir + "/edeq_ellipsoid2.params.txt");
+  check(p.count("a0") && p.count("b0") && p.count("c0"), "edeq parameters");
   if(failures) { std::cerr << failures << " failure(s)\n"; return 1; }
   std::cout << "test_sidecar_readers: all checks passed\n";
   return 0;

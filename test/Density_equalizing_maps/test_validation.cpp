@@ -88,6 +88,47 @@ int main()
     check(DEM::spherical_conformal_map(m, out).fold_overs == 0, "after collect_garbage() the mesh maps");
   }
 
+  // no faces at all: ten vertices, and nothing
+  {
+    Mesh m;
+    for(int i = 0; i < 10; ++i) m.add_vertex(Point(i, i * i, 0.5 * i));
+    expect_rejected(m, "no faces", "mesh with no faces");
+    expect_rejected(Mesh(), "too few vertices", "empty mesh");
+  }
+
+  // a user vertex_index_map that does not number the vertices 0..n-1
+  {
+    Mesh m = icosphere(1);
+    auto index = m.add_property_map<vertex_descriptor, std::size_t>("v:bad_index", 0).first;
+    std::size_t i = 0;
+    for(vertex_descriptor v : vertices(m)) index[v] = i++;
+    index[vertex_descriptor(7)] = 3; // index 3 twice, 7 missing
+    auto out = m.add_property_map<vertex_descriptor, Point>("v:out", sentinel).first;
+    std::string msg = expect_throw<DEM::Invalid_input>(
+      [&] { DEM::spherical_conformal_map(m, out, CGAL::parameters::vertex_index_map(index)); }, "duplicate index");
+    std::cout << "vertex_index_map with a duplicate index: \"" << msg << "\"" << std::endl;
+    check(contains(msg, "vertex index map") && contains(msg, "index 3"),
+          "vertex_index_map with a duplicate index: message names the map and the index (" + msg + ")");
+    index[vertex_descriptor(7)] = 1000;
+    msg = expect_throw<DEM::Invalid_input>(
+      [&] { DEM::spherical_conformal_map(m, out, CGAL::parameters::vertex_index_map(index)); }, "index out of range");
+    check(contains(msg, "vertex index map") && contains(msg, "index 1000"),
+          "vertex_index_map out of range: message names the map and the index (" + msg + ")");
+    msg = expect_throw<DEM::Invalid_input>(
+      [&] { DEM::number_of_fold_overs(m, m.points(), CGAL::parameters::vertex_index_map(index)); },
+      "measures: index out of range");
+    check(contains(msg, "vertex index map"), "number_of_fold_overs with a bad vertex_index_map: rejected (" + msg + ")");
+    bool untouched = true;
+    for(auto v : m.vertices()) untouched = untouched && out[v] == sentinel;
+    check(untouched, "bad vertex_index_map: nothing written");
+    // a valid user numbering (reversed) gives the same map as the built-in one
+    i = m.number_of_vertices();
+    for(vertex_descriptor v : vertices(m)) index[v] = --i;
+    auto a = m.add_property_map<vertex_descriptor, Point>("v:a").first;
+    DEM::spherical_conformal_map(m, a, CGAL::parameters::vertex_index_map(index));
+    check(DEM::number_of_fold_overs(m, a) == 0, "a reversed vertex_index_map maps without fold-over");
+  }
+
   // the same through mobius_area_correction (it validates the mesh too)
   {
     const Mesh m = open_icosphere();

@@ -2,7 +2,8 @@
 // test_edem_shared.cpp and test_edem_elongated_shared.cpp (issue 5, item 4):
 //  - population_case: an edem_* mesh with its population and radii
 //    (.params.txt a, b, c): final variance of the normalized face density
-//    <= 0.014 (paper 000 Table 1), 0 fold-overs, points on the ellipsoid to 1e-12;
+//    <= 0.014 and the row of paper 000 Table 1 to one unit of its last printed
+//    digit, 0 fold-overs, points on the ellipsoid to 1e-12;
 //  - area_case: area-preserving EDEM onto the ellipsoid (1, 0.8, 1.4):
 //    mean |d_area| <= 0.05, 0 fold-overs.
 #ifndef DEM_EDEM_CASES_H
@@ -66,6 +67,16 @@ inline void population_case(const std::string& name)
   std::cout << name << ": radii " << radii[0] << " " << radii[1] << " " << radii[2]
             << ", Var(normalized face density) " << v.face << ", Var(vertex density) " << v.vertex << std::endl;
   check(v.face <= 0.014, name + ": Var(normalized face density) <= 0.014");
+  // Paper 000 Table 1, Var of the normalized final density (printed with 4
+  // decimals; the authors' code measures it on the faces, as here): one unit
+  // of the last digit, half for the table's rounding, half for the
+  // difference between two implementations
+  static const std::map<std::string, double> table_1 = {
+    {"edem_sphere", 0.0068},        {"edem_ellipsoid1", 0.0137},    {"edem_ellipsoid2", 0.0055},
+    {"edem_ellipsoid3", 0.0010},    {"edem_ellipsoid_cts", 0.0028}, {"edem_ellipsoid_discts", 0.0032}};
+  const auto row = table_1.find(name);
+  if(check(row != table_1.end(), name + ": a row of paper 000 Table 1"))
+    check_close(v.face, row->second, 1e-4 + 1e-12, name + ": Var(normalized final density) of paper 000 Table 1");
 }
 
 inline void area_case(const std::string& name)

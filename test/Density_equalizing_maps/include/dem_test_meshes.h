@@ -21,6 +21,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <iostream>
 #include <limits>
@@ -228,6 +229,24 @@ inline Arrays bumpy_arrays(int subdivisions, double amplitude = 0.25, double elo
 
 inline Mesh bumpy(int subdivisions, double amplitude = 0.25) { return to_mesh(bumpy_arrays(subdivisions, amplitude)); }
 inline Mesh elongated(int subdivisions) { return to_mesh(bumpy_arrays(subdivisions, 0.15, 4.)); }
+
+/// Icosphere whose vertices are moved on the sphere by the Moebius dilation
+/// z -> k z of the stereographic chart from the north pole: still a unit
+/// sphere, but with triangles k^2 times larger near the south pole than near
+/// the north one. Its conformal maps onto the sphere are exactly the Moebius
+/// maps, among which only the inverse dilation (up to rotation) makes the map
+/// area-preserving: FLASH's normalization does not pick it.
+inline Arrays mobius_dilated_icosphere_arrays(int subdivisions, double k)
+{
+  Arrays a = icosphere_arrays(subdivisions);
+  for(Eigen::Index i = 0; i < a.X.rows(); ++i) {
+    const double z = a.X(i, 2);
+    if(z > 1 - 1e-12) continue; // the north pole stays
+    const double u = k * a.X(i, 0) / (1 - z), v = k * a.X(i, 1) / (1 - z), r2 = u * u + v * v;
+    a.X.row(i) << 2 * u / (1 + r2), 2 * v / (1 + r2), (r2 - 1) / (r2 + 1);
+  }
+  return a;
+}
 
 /// Closed torus with radii R > r, nu x nv vertices, (nu x nv x 2) triangles.
 inline Arrays torus_arrays(double R, double r, int nu, int nv)
@@ -453,8 +472,12 @@ inline Arrays non_manifold_edge_arrays()
 // ---------------------------------------------------------------------------
 // Shared data (../shared/data, DEM_DATA_DIR)
 
+/// The shared data folder: the environment variable DEM_TEST_DATA_DIR if set
+/// (e.g. `DEM_TEST_DATA_DIR=/nonexistent ctest` checks the suite without the
+/// data, no rebuild needed), else DEM_DATA_DIR (CMake's DEM_SHARED_DATA_DIR).
 inline std::string data_dir()
 {
+  if(const char* dir = std::getenv("DEM_TEST_DATA_DIR")) return dir;
 #ifdef DEM_DATA_DIR
   return DEM_DATA_DIR;
 #else
@@ -468,6 +491,27 @@ inline bool data_available(const std::string& file)
 {
   std::ifstream in(data_path(file));
   return bool(in);
+}
+
+/// True when a program with a shared-mesh part is asked to run that part only
+/// (`<program> --shared`, registered as the ctest test `<program>_shared` with
+/// the label `shared_data`, see CMakeLists.txt). Without the argument such a
+/// program runs on generated meshes only.
+inline bool shared_part_requested(int argc, char** argv)
+{
+  return argc > 1 && std::string(argv[1]) == "--shared";
+}
+
+/// The exit code of a shared-mesh part: skipped (77) when `probe` is absent
+/// from the data folder, else what `run()` returns.
+template <class Run>
+int run_shared_part(const std::string& probe, Run run)
+{
+  if(!data_available(probe)) {
+    std::cout << "shared data not found in '" << data_dir() << "' (" << probe << "): skipped" << std::endl;
+    return skip_code;
+  }
+  return run();
 }
 
 /// Reads `<DEM_DATA_DIR>/<name>.off`; false if absent or unreadable.

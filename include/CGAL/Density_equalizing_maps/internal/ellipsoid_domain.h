@@ -235,15 +235,22 @@ public:
     return t;
   }
 
+  /// x_new = x + dt d on the domain. A step that folds (exact test) is
+  /// repaired in two stereographic charts (LBS) and untangled; if that fails,
+  /// dt is halved. A step that does not fold is taken as it is: the chart test
+  /// also flags faces that are not inverted (a thin face whose circumcircle
+  /// encloses the chart's projection point has the opposite orientation in the
+  /// chart), and repairing those steps only slowed the flows down
+  /// (benchmark/RESULTS.md, "Repairs and fallbacks").
   bool advance(const Matrix& x, const Matrix& d, double dt, Matrix& x_new, Step_statistics& stats)
   {
     for(; dt >= 1e-10; dt /= 2) {
       Matrix s = to_unit_sphere(x + dt * d, m_radii);
-      const Eigen::Index south = m_repair.antipodal_face(s, m_pole);
-      bool ok = m_repair.repair_in_chart(s, m_pole, stats.repairs) &&
-                m_repair.repair_in_chart(s, south, stats.repairs);
-      if(ok) {
-        if(!inverted_faces_about_center(s, m_F).empty()) ok = untangle_on_sphere(s, m_F, m_vertex_faces);
+      bool ok = true;
+      if(!inverted_faces_about_center(s, m_F).empty()) {
+        const Eigen::Index south = m_repair.antipodal_face(s, m_pole);
+        ok = m_repair.repair_in_chart(s, m_pole, stats.repairs) && m_repair.repair_in_chart(s, south, stats.repairs);
+        if(ok && !inverted_faces_about_center(s, m_F).empty()) ok = untangle_on_sphere(s, m_F, m_vertex_faces);
       }
       if(ok) {
         x_new = from_unit_sphere(s, m_radii);
