@@ -10,6 +10,8 @@
 
 #include <CGAL/Density_equalizing_maps/internal/sparse_solver.h>
 
+#include <Eigen/Geometry> // cross products
+
 #include <complex>
 #include <vector>
 

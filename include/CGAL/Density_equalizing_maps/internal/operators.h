@@ -12,6 +12,7 @@
 
 #include <CGAL/Density_equalizing_maps/internal/mesh_arrays.h>
 
+#include <Eigen/Geometry> // cross products
 #include <Eigen/Sparse>
 
 #include <algorithm>

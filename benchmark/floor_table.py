@@ -1,0 +1,93 @@
+#!/usr/bin/env python3
+# Copyright (c) 2026 Density_equalizing_maps contributors.
+# This file is part of Density_equalizing_maps, a third-party CGAL package.
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Each method's time as a multiple of the floor: one sparse factorization.
+
+For every mesh, runs build/bin/factorization_floor (median full and
+numeric-only factorization of the pinned cotangent Laplacian with the
+package's default solver), then `dem` once per method and repeat, interleaved
+(method A, B, C, A, B, C, ...: this machine drifts by tens of percent from
+minute to minute), and prints a Markdown table of medians with each method's
+mapping time ("seconds" of the metrics JSON) divided by the full
+factorization.
+
+  python3 benchmark/floor_table.py MESH.off [MESH2.off ...] [--repeat 5]
+      [--methods spherical-conformal spherical-conformal:--mobius ellipsoidal-conformal sdem]
+      [--torus R r]   (then the default methods are tdem and toroidal-parameterization)
+
+A method may carry dem options after a colon, separated by commas:
+"spherical-conformal:--mobius", "edem:--radii,1,1,2".
+"""
+import argparse
+import json
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+
+
+def run_floor(exe, mesh, repeat):
+    out = subprocess.run([exe, mesh, str(repeat)], check=True, capture_output=True, text=True).stdout
+    return json.loads(out)
+
+
+def run_dem(dem, method_spec, mesh, extra, threads):
+    name, _, opts = method_spec.partition(":")
+    args = [dem, name, mesh] + [o for o in opts.split(",") if o] + extra
+    env = dict(os.environ)
+    if threads:
+        for k in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS"):
+            env[k] = str(threads)
+    with tempfile.NamedTemporaryFile(suffix=".json") as m:
+        p = subprocess.run(args + ["--metrics", m.name, "--quiet"], capture_output=True, text=True, env=env)
+        if p.returncode != 0:
+            return None, p.returncode
+        with open(m.name) as f:
+            return json.load(f)["seconds"], 0
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("meshes", nargs="+")
+    ap.add_argument("--repeat", type=int, default=5)
+    ap.add_argument("--methods", nargs="+")
+    ap.add_argument("--torus", nargs=2, metavar=("R", "r"))
+    ap.add_argument("--build-dir", default=os.environ.get("DEM_BUILD_DIR", "build"))
+    ap.add_argument("--threads", type=int, default=0, help="OMP/BLAS threads for dem (0: leave as is)")
+    a = ap.parse_args()
+    floor_exe = os.path.join(a.build_dir, "bin", "factorization_floor")
+    dem = os.path.join(a.build_dir, "bin", "dem")
+    extra = ["--torus", a.torus[0], a.torus[1]] if a.torus else []
+    methods = a.methods or (["tdem", "toroidal-parameterization"] if a.torus else
+                            ["spherical-conformal", "spherical-conformal:--mobius", "ellipsoidal-conformal", "sdem"])
+    print("| mesh | faces | full factorization (s) | numeric only (s) | method | median (s) | x floor |")
+    print("|---|---:|---:|---:|---|---:|---:|")
+    for mesh in a.meshes:
+        floor = run_floor(floor_exe, mesh, a.repeat)
+        times = {m: [] for m in methods}
+        failed = {}
+        for _ in range(a.repeat):
+            for m in methods:
+                if m in failed:
+                    continue
+                t, rc = run_dem(dem, m, mesh, extra, a.threads)
+                if t is None:
+                    failed[m] = rc
+                else:
+                    times[m].append(t)
+        full = floor["full_factorization_seconds"]
+        for i, m in enumerate(methods):
+            head = (f"| {os.path.basename(mesh)} | {floor['faces']} | {full:.3f} | "
+                    f"{floor['numeric_factorization_seconds']:.3f} |") if i == 0 else "| | | | |"
+            if m in failed:
+                print(f"{head} {m} | exit {failed[m]} | |")
+            else:
+                med = statistics.median(times[m])
+                print(f"{head} {m} | {med:.3f} | {med / full:.2f} |")
+        sys.stdout.flush()
+
+
+if __name__ == "__main__":
+    main()

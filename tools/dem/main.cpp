@@ -1,0 +1,38 @@
+// Copyright (c) 2026 Density_equalizing_maps contributors.
+// This file is part of Density_equalizing_maps, a third-party CGAL package.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// dem: the command-line front end of the package (contract in DESIGN.md).
+//
+//   dem METHOD INPUT [options]       map a mesh (map_command.cpp)
+//   dem APPLICATION ... [options]    an application built on the maps
+//
+// This file only dispatches on the first argument.
+
+#include "cli.h"
+#include "commands.h"
+
+#include <iostream>
+#include <string>
+#include <vector>
+
+namespace dem_cli {
+
+const std::vector<Application>& applications()
+{
+  // Applications register here, one file each (remesh.cpp, ...).
+  static const std::vector<Application> a = {};
+  return a;
+}
+
+} // namespace dem_cli
+
+int main(int argc, char** argv)
+{
+  using namespace dem_cli;
+  const std::vector<std::string> args(argv + 1, argv + argc);
+  if(args.empty()) { std::cerr << usage_text(); return 2; }
+  for(const Application& a : applications())
+    if(args[0] == a.name) return a.run(std::vector<std::string>(args.begin() + 1, args.end()));
+  return map_command(args);
+}
