@@ -4,7 +4,8 @@
 """Remeshing quality through the five routes of paper 000's Table 7.
 
 Runs `dem remesh MESH --via ROUTE --vertices N` (default population: the input
-face areas, i.e. area-preserving maps, as in the paper's remeshing experiment)
+face areas, i.e. area-preserving maps, as in the paper's remeshing experiment;
+EDEM and EDEQ get the radii of MESH.params.txt, else the radii ECM used)
 for every mesh and route and prints a Markdown table of delta_shape / delta_size,
 with the remeshing time (after the map) and the map's own seconds.
 
@@ -25,10 +26,26 @@ MESHES = ["maxplanck", "twistedball", "brain_landmarks", "david_enlarge", "spher
           "edeq_ellipsoid1", "edeq_ellipsoid2", "edeq_ellipsoid3", "edeq_sphere"]
 
 
-def run(dem, mesh, route, vertices, timeout):
+def params_radii(mesh, route):
+    """Radii from MESH.params.txt (a, b, c for EDEM; a0, b0, c0, the initial radii, for EDEQ)."""
+    path = mesh[:-4] + ".params.txt"
+    if not os.path.exists(path):
+        return None
+    values = {}
+    for line in open(path):
+        if "=" in line:
+            k, v = line.split("=", 1)
+            values[k.strip()] = float(v)
+    keys = ["a0", "b0", "c0"] if route == "edeq" and "a0" in values else ["a", "b", "c"]
+    return [values[k] for k in keys] if all(k in values for k in keys) else None
+
+
+def run(dem, mesh, route, vertices, timeout, radii=None):
     with tempfile.TemporaryDirectory() as tmp:
         metrics = os.path.join(tmp, "m.json")
         cmd = [dem, "remesh", mesh, "--via", route, "--vertices", str(vertices), "--metrics", metrics, "--quiet"]
+        if radii:
+            cmd += ["--radii"] + ["%.17g" % r for r in radii]
         try:
             p = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout)
         except subprocess.TimeoutExpired:
@@ -54,8 +71,13 @@ def main():
     notes = []
     for name in a.meshes.split(","):
         cells = []
+        ecm_radii = None  # EDEM and EDEQ need radii: the mesh's parameters, else those ECM chose
         for r in routes:
-            m, why = run(a.dem, os.path.join(a.data, name + ".off"), r, a.vertices, a.timeout)
+            mesh = os.path.join(a.data, name + ".off")
+            radii = (params_radii(mesh, r) or ecm_radii) if r in ("edem", "edeq") else None
+            m, why = run(a.dem, mesh, r, a.vertices, a.timeout, radii)
+            if m is not None and r == "ellipsoidal-conformal":
+                ecm_radii = m.get("radii")
             if m is None:
                 cells.append("failed")
                 notes.append("%s via %s: %s" % (name, r, why))
