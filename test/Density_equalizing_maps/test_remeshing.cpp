@@ -7,10 +7,20 @@
 
 #include "dem_test_meshes.h"
 
+#include <CGAL/Density_equalizing_maps/ellipsoidal_density_equalizing_map.h>
+#include <CGAL/Density_equalizing_maps/measures.h>
 #include <CGAL/Density_equalizing_maps/point_transfer.h>
+#include <CGAL/Density_equalizing_maps/remeshing.h>
 #include <CGAL/Density_equalizing_maps/spherical_conformal_map.h>
+#include <CGAL/Density_equalizing_maps/spherical_density_equalizing_map.h>
+#include <CGAL/Density_equalizing_maps/toroidal_density_equalizing_map.h>
 
+#include <CGAL/AABB_face_graph_triangle_primitive.h>
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
 #include <CGAL/Polygon_mesh_processing/bbox.h>
+#include <CGAL/Polygon_mesh_processing/measure.h>
+#include <CGAL/boost/graph/helpers.h>
 
 #include <random>
 
@@ -213,6 +223,167 @@ void test_bad_maps_refused()
   check(contains(radii, "not onto the torus"), "the torus-radii message says so: " + radii);
 }
 
+/// Largest distance from a vertex of `out` to the surface of `in`, over the diagonal of `in`.
+double max_distance_to(const Mesh& out, const Mesh& in)
+{
+  typedef CGAL::AABB_face_graph_triangle_primitive<Mesh> Primitive;
+  typedef CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive> > Tree;
+  Tree tree(faces(in).first, faces(in).second, in);
+  double worst = 0;
+  for(auto v : out.vertices()) worst = std::max(worst, std::sqrt(tree.squared_distance(out.point(v))));
+  return worst / bbox_diagonal(in);
+}
+
+/// Closed, valid, one component, Euler characteristic `euler`, every vertex manifold.
+bool closed_manifold_with_euler(const Mesh& m, long euler)
+{
+  if(!CGAL::is_closed(m) || !CGAL::is_valid_polygon_mesh(m) || !CGAL::is_triangle_mesh(m)) return false;
+  for(auto v : m.vertices()) {
+    // a manifold vertex has one umbrella: its halfedges around the target form a single cycle of length degree
+    std::size_t around = 0;
+    for(auto h : halfedges_around_target(m.halfedge(v), m)) { (void)h; ++around; }
+    if(around != m.degree(v)) return false;
+  }
+  return long(m.number_of_vertices()) - long(m.number_of_edges()) + long(m.number_of_faces()) == euler;
+}
+
+void test_remesh_ellipsoid_through_edem()
+{
+  const Mesh m = ellipsoid(1.6, 1.0, 0.7, 4);
+  Mesh& mm = const_cast<Mesh&>(m);
+  Point_map image = add_point_map(mm, "v:edem");
+  const std::array<double, 3> radii{{1.6, 1.0, 0.7}};
+  const DEM::Map_report map = DEM::ellipsoidal_density_equalizing_map(m, image, DEM::parameters::ellipsoid_radii(radii));
+  check(map.fold_overs == 0, "EDEM of the ellipsoid is fold-free");
+  Mesh out;
+  const DEM::Remeshing_report r =
+    DEM::remesh_through_map(m, image, DEM::Ellipsoid_domain{1.6, 1.0, 0.7}, 1500, out);
+  std::cout << "ellipsoid through EDEM: " << r.vertices << " vertices, delta_size " << r.delta_size
+            << ", delta_shape " << r.delta_shape << " (domain mesh " << r.domain_delta_size << ", "
+            << r.domain_delta_shape << ")" << std::endl;
+  check(out.number_of_vertices() == 1500 && r.vertices == 1500, "the requested number of vertices on the ellipsoid");
+  check(closed_manifold_with_euler(out, 2), "the remeshed ellipsoid is a closed manifold of genus 0");
+  check(max_distance_to(out, m) <= 1e-9, "every remeshed vertex lies on the input surface");
+  // on the input's faces, hence within the faceting error of the exact ellipsoid
+  double faceting = 0, off = 0;
+  for(auto f : m.faces()) {
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    for(auto v : vertices_around_face(m.halfedge(f), m)) c += Eigen::Vector3d(m.point(v).x(), m.point(v).y(), m.point(v).z()) / 3;
+    faceting = std::max(faceting, 1 - c.cwiseQuotient(Eigen::Vector3d(1.6, 1.0, 0.7)).norm());
+  }
+  for(auto v : out.vertices()) {
+    const Point& p = out.point(v);
+    off = std::max(off, std::abs(1 - Eigen::Vector3d(p.x() / 1.6, p.y(), p.z() / 0.7).norm()));
+  }
+  check(off <= faceting, "the remeshed ellipsoid stays on the ellipsoid (up to the input's faceting " +
+                           std::to_string(faceting) + "): " + std::to_string(off));
+  const DEM::Mesh_uniformity u = DEM::mesh_uniformity(out);
+  check_close(u.delta_size, r.delta_size, 1e-12, "mesh_uniformity agrees with the report");
+}
+
+void test_adaptive_density()
+{
+  // an icosphere whose cap z > 0.5 (a quarter of the area) carries twice the population density
+  Mesh m = icosphere(4);
+  auto population = m.add_property_map<face_descriptor, double>("f:population", 0.).first;
+  auto in_cap = [](const Point& p) { return p.z() > 0.5; };
+  for(auto f : m.faces()) {
+    Point c(0, 0, 0);
+    double area = CGAL::Polygon_mesh_processing::face_area(f, m);
+    Eigen::Vector3d s = Eigen::Vector3d::Zero();
+    for(auto v : vertices_around_face(m.halfedge(f), m)) s += Eigen::Vector3d(m.point(v).x(), m.point(v).y(), m.point(v).z());
+    c = Point(s.x() / 3, s.y() / 3, s.z() / 3);
+    population[f] = area * (in_cap(c) ? 2. : 1.);
+  }
+  Point_map sdem = add_point_map(m, "v:sdem"), uniform = add_point_map(m, "v:uniform");
+  DEM::spherical_density_equalizing_map(m, sdem, DEM::parameters::face_population_map(population));
+  DEM::spherical_density_equalizing_map(m, uniform);
+  auto share = [&](Point_map map) {
+    Mesh out;
+    DEM::remesh_through_map(m, map, DEM::Unit_sphere_domain(), 3000, out);
+    std::size_t inside = 0;
+    for(auto v : out.vertices()) inside += in_cap(out.point(v));
+    return double(inside) / double(out.number_of_vertices());
+  };
+  const double with = share(sdem), without = share(uniform);
+  // vertices per unit area inside the cap over outside (cap = 1/4 of the sphere)
+  const double density_ratio = (with / 0.25) / ((1 - with) / 0.75);
+  std::cout << "adaptive: cap vertex share " << with << " (area-preserving map: " << without
+            << "), density ratio inside/outside " << density_ratio << std::endl;
+  check(density_ratio >= 1.6, "a doubled population gives at least 1.6 x the vertex density: " + std::to_string(density_ratio));
+  check(std::abs(without - 0.25) < 0.02, "an area-preserving map gives the cap its area share: " + std::to_string(without));
+}
+
+void test_torus_remeshing()
+{
+  // a bumpy torus (not on the torus): toroidal parameterization, then remeshing
+  Arrays a = torus_arrays(3, 1, 48, 16);
+  for(Eigen::Index i = 0; i < a.X.rows(); ++i) {
+    const double phi = std::atan2(a.X(i, 1), a.X(i, 0));
+    a.X.row(i) *= 1 + 0.1 * std::sin(3 * phi);
+  }
+  Mesh m = to_mesh(a);
+  Point_map image = add_point_map(m, "v:torus");
+  const DEM::Map_report map = DEM::toroidal_parameterization(m, image, DEM::parameters::torus_radii(std::array<double, 2>{{3, 1}}));
+  check(map.fold_overs == 0, "toroidal parameterization is fold-free");
+  Mesh out;
+  const DEM::Remeshing_report r = DEM::remesh_through_map(m, image, DEM::Torus_domain{3, 1}, 2000, out);
+  std::cout << "torus: " << r.vertices << " vertices, delta_size " << r.delta_size << ", delta_shape " << r.delta_shape
+            << " (domain mesh " << r.domain_delta_size << ", " << r.domain_delta_shape << ")" << std::endl;
+  check(std::abs(double(r.vertices) - 2000) <= 20, "torus: vertex count within 1 %");
+  check(closed_manifold_with_euler(out, 0), "the remeshed torus is a closed manifold of genus 1");
+  std::size_t not_six = 0;
+  for(auto v : out.vertices()) not_six += out.degree(v) != 6;
+  check(not_six == 0, "every vertex of the remeshed torus has valence 6 (" + std::to_string(not_six) + " do not)");
+  check(max_distance_to(out, m) <= 1e-9, "torus: every remeshed vertex lies on the input surface");
+}
+
+void test_remeshing_refusals()
+{
+  Mesh m = bumpy(2);
+  Point_map sphere = add_point_map(m, "v:sphere");
+  DEM::spherical_conformal_map(m, sphere);
+  Mesh out = icosphere(0); // must stay untouched
+  const std::size_t before = out.number_of_vertices();
+  const std::string few = expect_throw<DEM::Invalid_input>(
+    [&] { DEM::remesh_through_map(m, sphere, DEM::Unit_sphere_domain(), 11, out); }, "N < 12 is refused");
+  check(contains(few, "at least 12"), "the N < 12 message says so: " + few);
+  Point_map folded = add_point_map(m, "v:folded");
+  for(auto v : m.vertices()) put(folded, v, get(sphere, v));
+  const auto h = *m.halfedges().begin();
+  put(folded, m.source(h), get(sphere, m.target(h)));
+  put(folded, m.target(h), get(sphere, m.source(h)));
+  const std::string fold = expect_throw<DEM::Invalid_input>(
+    [&] { DEM::remesh_through_map(m, folded, DEM::Unit_sphere_domain(), 500, out); }, "a folded map is refused");
+  check(contains(fold, "fold-free"), "the folded-map message says so: " + fold);
+  const std::string wrong = expect_throw<DEM::Invalid_input>(
+    [&] { DEM::remesh_through_map(m, sphere, DEM::Ellipsoid_domain{1, 1, 2}, 500, out); }, "a wrong domain is refused");
+  check(contains(wrong, "not onto"), "the wrong-domain message says so: " + wrong);
+  const std::string genus = expect_throw<DEM::Invalid_input>(
+    [&] { DEM::remesh_through_map(m, sphere, DEM::Torus_domain{3, 1}, 500, out); }, "a sphere map is not a torus map");
+  check(!genus.empty(), "the genus message: " + genus);
+  check(out.number_of_vertices() == before, "nothing is written when the input is refused");
+}
+
+void test_domain_meshes()
+{
+  const std::size_t sizes[] = {100, 1000, 8500};
+  for(std::size_t n : sizes) {
+    Mesh s, t;
+    DEM::uniform_domain_mesh(DEM::Unit_sphere_domain(), n, s);
+    DEM::uniform_domain_mesh(DEM::Torus_domain{3, 1}, n, t);
+    const DEM::Mesh_uniformity us = DEM::mesh_uniformity(s), ut = DEM::mesh_uniformity(t);
+    std::cout << "domain meshes n = " << n << ": sphere " << s.number_of_vertices() << " (" << us.delta_size << ", "
+              << us.delta_shape << "), torus " << t.number_of_vertices() << " (" << ut.delta_size << ", "
+              << ut.delta_shape << ")" << std::endl;
+    check(s.number_of_vertices() == n, "sphere mesh: exactly n vertices");
+    check(std::abs(double(t.number_of_vertices()) - double(n)) <= 0.01 * double(n), "torus mesh: n within 1 %");
+    check(closed_manifold_with_euler(s, 2) && closed_manifold_with_euler(t, 0), "domain meshes are closed manifolds");
+    check(DEM::number_of_fold_overs(s, s.points()) == 0, "sphere mesh: every face outward (exact)");
+    check(ut.delta_size <= 0.7, "torus mesh (3, 1): delta_size <= 0.7");
+  }
+}
+
 } // namespace
 
 int main()
@@ -222,5 +393,10 @@ int main()
   test_ellipsoid_round_trip();
   test_torus_round_trip();
   test_bad_maps_refused();
+  test_domain_meshes();
+  test_remeshing_refusals();
+  test_remesh_ellipsoid_through_edem();
+  test_adaptive_density();
+  test_torus_remeshing();
   return finish("test_remeshing");
 }

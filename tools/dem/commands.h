@@ -25,6 +25,9 @@ struct Application
   int (*run)(const std::vector<std::string>& args); // args after NAME
 };
 
+/// `dem remesh ...` (remesh.cpp).
+extern const Application remesh_application;
+
 /// The applications built into this `dem` (main.cpp).
 const std::vector<Application>& applications();
 

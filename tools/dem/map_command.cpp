@@ -58,6 +58,25 @@ std::string failure_description(const DEM::Map_report& r)
 
 } // namespace
 
+Metrics map_metrics(const Problem& pb, const Options& opt, const Run& run)
+{
+  Metric_input mi;
+  mi.X = &pb.X; mi.F = &pb.F; mi.Y = &run.Y;
+  mi.initial = run.Y0.size() ? &run.Y0 : &pb.X;
+  mi.population = &pb.population;
+  mi.radii_count = domain_of(opt.method) == Domain::TORUS ? 2 : 3;
+  std::vector<Eigen::Index> landmark_index;
+  DI::Matrix targets;
+  if(!pb.landmarks.empty()) {
+    targets = landmark_targets(pb.landmarks, landmark_index);
+    mi.landmark_index = &landmark_index;
+    mi.landmark_targets = &targets;
+  }
+  Metrics m = compute_metrics(method_name(opt.method), run.report, run.seconds, mi);
+  m.cpu_seconds = run.cpu_seconds;
+  return m;
+}
+
 int map_command(const std::vector<std::string>& args)
 {
   Options opt;
@@ -140,20 +159,7 @@ int map_command(const std::vector<std::string>& args)
   }
   for(const std::string& n : run.notes) std::cerr << "dem: " << n << "\n";
 
-  Metric_input mi;
-  mi.X = &pb.X; mi.F = &pb.F; mi.Y = &run.Y;
-  mi.initial = run.Y0.size() ? &run.Y0 : &pb.X;
-  mi.population = &pb.population;
-  mi.radii_count = domain_of(opt.method) == Domain::TORUS ? 2 : 3;
-  std::vector<Eigen::Index> landmark_index;
-  DI::Matrix targets;
-  if(!pb.landmarks.empty()) {
-    targets = landmark_targets(pb.landmarks, landmark_index);
-    mi.landmark_index = &landmark_index;
-    mi.landmark_targets = &targets;
-  }
-  Metrics m = compute_metrics(method_name(opt.method), run.report, run.seconds, mi);
-  m.cpu_seconds = run.cpu_seconds;
+  Metrics m = map_metrics(pb, opt, run);
 
   if(!opt.metrics.empty() && !write_metrics_json(opt.metrics, m)) {
     std::cerr << "dem: cannot write " << opt.metrics << "\n";

@@ -9,6 +9,7 @@
 #ifndef DEM_TOOL_MAPS_H
 #define DEM_TOOL_MAPS_H
 
+#include "metrics.h"
 #include "problem.h"
 
 namespace dem_cli {
@@ -30,6 +31,9 @@ inline Run run_map(Problem& pb, const Options& opt)
   }
   return Run();
 }
+
+/// The contract's metrics of a map run (map_command.cpp); applications add their keys.
+Metrics map_metrics(const Problem& pb, const Options& opt, const Run& run);
 
 } // namespace dem_cli
 

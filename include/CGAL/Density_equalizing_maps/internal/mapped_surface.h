@@ -75,6 +75,9 @@ public:
   }
 
   const Domain_shape& domain() const { return m_domain; }
+  /// Exact orientation shared by all image faces: about the origin (sphere,
+  /// ellipsoid) or in the flat-torus layout (torus), +1 or -1.
+  int orientation() const { return m_orientation; }
   const Matrix& positions() const { return m_X; }
   const Index_matrix& faces() const { return m_F; }
 
@@ -98,7 +101,15 @@ public:
   Surface_point locate_flat(const Eigen::Vector2d& w, const Surface_point& hint = Surface_point()) const
   {
     Surface_point s;
-    const Eigen::Vector2d c = m_torus->reduce_to_cell(w);
+    // the translate of w nearest to the hint's triangle (a walk from the hint
+    // then stays short across the seams of the period cell), else the one in the cell
+    Eigen::Vector2d c = m_torus->reduce_to_cell(w);
+    if(hint.face >= 0) {
+      const Eigen::Vector2d p0 = m_torus->corner(hint.face, 0, hint.shift);
+      const Torus_radii& t = m_torus->radii();
+      c.x() += t.period_u() * std::round((p0.x() - c.x()) / t.period_u());
+      c.y() += t.period_v() * std::round((p0.y() - c.y()) / t.period_v());
+    }
     Flat_torus_location start;
     start.face = hint.face;
     start.shift = hint.shift;
@@ -165,6 +176,26 @@ public:
     return out;
   }
 
+  /// Pull back of the vertices Q of a mesh with faces G (a domain mesh):
+  /// visited breadth-first, each walk starting at the location of the
+  /// vertex's parent, a neighbour on the domain. Rows without location are NaN.
+  Matrix pull_back_mesh_vertices(const Matrix& Q, const Index_matrix& G, std::size_t& unlocated) const
+  {
+    std::vector<Eigen::Index> order, parent;
+    breadth_first_vertex_order(G, Q.rows(), order, parent);
+    std::vector<Surface_point> located(static_cast<std::size_t>(Q.rows()));
+    Matrix out(Q.rows(), 3);
+    unlocated = 0;
+    for(const Eigen::Index i : order) {
+      const Surface_point hint = parent[i] >= 0 ? located[parent[i]] : Surface_point();
+      const Surface_point s = locate(row_vector3(Q, i), hint);
+      located[i] = s;
+      if(s.face < 0) { out.row(i).setConstant(std::numeric_limits<double>::quiet_NaN()); ++unlocated; continue; }
+      out.row(i) = surface_point(s).transpose();
+    }
+    return out;
+  }
+
 private:
   void prepare_star_shaped(const Matrix& Y)
   {
@@ -179,6 +210,7 @@ private:
     if(folds > 0)
       throw Invalid_input("the map is not fold-free: " + std::to_string(folds) +
                           " faces are inverted or degenerate on the domain (exact predicates)");
+    m_orientation = sign;
     m_sphere.reset(new Spherical_point_locator(Y, m_F, sign));
   }
 
@@ -199,12 +231,14 @@ private:
     std::string why;
     const int sign = layout_orientation(u, m_F, o, t, why);
     if(sign == 0) throw Invalid_input("the map is not fold-free: " + why);
+    m_orientation = sign;
     m_torus.reset(new Flat_torus_point_locator(u, m_F, o, t, sign));
   }
 
   Matrix m_X;
   Index_matrix m_F;
   Domain_shape m_domain;
+  int m_orientation = 1;
   std::shared_ptr<const Spherical_point_locator> m_sphere;
   std::shared_ptr<const Flat_torus_point_locator> m_torus;
 };

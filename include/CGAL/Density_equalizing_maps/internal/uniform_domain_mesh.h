@@ -8,18 +8,21 @@
 // Near-uniform triangulations of the domains with a prescribed number of
 // vertices (ALGORITHMS.md section 11, "Remeshing"), on index arrays.
 //
-// Sphere and ellipsoid: N points of the spherical Fibonacci lattice (N
-// exactly), triangulated by their convex hull (exact, CGAL::convex_hull_3: the
-// hull of points on a sphere is their spherical Delaunay triangulation), mapped
-// to the ellipsoid by the linear map diag(a, b, c) (the hull is affinely
-// invariant, so the triangulation stays valid), then relaxed as in DistMesh
-// (Persson-Strang 2004): edges shorter than 1.2 x their r.m.s. length push
-// their endpoints apart, the points are projected back onto the surface, and
-// edges are flipped to the intrinsic Delaunay criterion (opposite angles sum
-// below pi). A step that would invert a face (exact orientation about the
-// origin) is halved. The Fibonacci lattice alone is uniform away from its two
-// poles; the relaxation removes the polar defects and, on the ellipsoid, the
-// area distortion of the linear map.
+// Sphere and ellipsoid: the icosahedral geodesic sphere of the largest
+// frequency f with 10 f^2 + 2 <= N vertices (near-equilateral triangles,
+// delta_shape 0.02, but delta_size 0.65 from the radial projection), N exactly
+// by splitting the edges of faces spread uniformly (Fibonacci directions),
+// intrinsic Delaunay flips, the linear map diag(a, b, c) onto the ellipsoid
+// (every face stays positively oriented about the origin), then relaxation:
+// springs towards equal edge lengths, radial projection back onto the surface,
+// flips every 10 steps; a step that would invert a face (exact orientation
+// about the origin) is halved. Measured alternatives (8,500 vertices, sphere):
+// the convex hull of the spherical Fibonacci lattice has delta_shape 0.116 (its
+// triangles are those of a sheared lattice, and Laplacian or Lloyd-like
+// smoothing keep any lattice in place: 0.094 after 20 steps); DistMesh's
+// repulsive springs from there reach 0.064 after 100 steps; Laplacian
+// smoothing of the geodesic sphere improves the shapes (0.015) but not the
+// sizes (delta_size 1.5).
 //
 // Torus: a triangular lattice of nu x nv vertices on the flat torus, each row
 // shifted by half a column (nv even, so the shift closes up), every vertex of
@@ -33,11 +36,10 @@
 #include <CGAL/Density_equalizing_maps/Map_report.h>
 #include <CGAL/Density_equalizing_maps/internal/fold_overs.h>
 #include <CGAL/Density_equalizing_maps/internal/measures.h>
+#include <CGAL/Density_equalizing_maps/internal/point_location.h>
 #include <CGAL/Density_equalizing_maps/internal/projections.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Surface_mesh.h>
-#include <CGAL/convex_hull_3.h>
 
 #include <algorithm>
 #include <cmath>
@@ -71,31 +73,113 @@ inline Matrix fibonacci_sphere_points(Eigen::Index n)
   return P;
 }
 
-/// The convex hull of points in convex position (all of them are hull
-/// vertices), faces oriented outward, rows of X kept.
-inline Index_matrix convex_hull_faces(const Matrix& P)
+/// The icosahedral geodesic sphere of frequency f: every face of the regular
+/// icosahedron split into f^2 triangles by its barycentric grid, the points
+/// projected radially onto the unit sphere; 10 f^2 + 2 vertices, all of
+/// valence 6 but the 12 of the icosahedron (valence 5), faces oriented outward.
+inline Triangle_arrays geodesic_sphere(int f)
 {
-  typedef Epick::Point_3 Point;
-  std::vector<Point> pts;
-  pts.reserve(static_cast<std::size_t>(P.rows()));
-  for(Eigen::Index i = 0; i < P.rows(); ++i) pts.emplace_back(P(i, 0), P(i, 1), P(i, 2));
-  CGAL::Surface_mesh<Point> hull;
-  CGAL::convex_hull_3(pts.begin(), pts.end(), hull);
-  if(Eigen::Index(hull.number_of_vertices()) != P.rows())
-    throw Invalid_input("internal error: a domain point is not a vertex of the convex hull");
-  // hull vertices -> input rows (the hull copies the points exactly)
-  std::map<Point, int> row;
-  for(Eigen::Index i = 0; i < P.rows(); ++i) row.emplace(pts[i], int(i));
-  std::vector<int> index(hull.number_of_vertices(), -1);
-  for(auto v : hull.vertices()) index[v.idx()] = row.at(hull.point(v));
-  Index_matrix F(hull.number_of_faces(), 3);
-  Eigen::Index k = 0;
-  for(auto f : hull.faces()) {
-    int c = 0;
-    for(auto v : vertices_around_face(hull.halfedge(f), hull)) F(k, c++) = index[v.idx()];
-    ++k;
+  const double t = (1 + std::sqrt(5.)) / 2;
+  const double V[12][3] = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
+                           {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+  const int T[20][3] = {{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+                        {11, 10, 2}, {10, 7, 6}, {7, 1, 8}, {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8},
+                        {3, 8, 9}, {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
+  std::map<std::array<int, 4>, int> id; // shared points: corners and edge points by their edge, others by face
+  std::vector<Eigen::Vector3d> P;
+  std::vector<Eigen::Vector3i> G;
+  auto vertex = [&](int face, int i, int j) {
+    const int w[3] = {f - i - j, i, j};
+    const int* c = T[face];
+    std::array<int, 4> key{{-1, -1, -1, -1}};
+    int nonzero = 0;
+    for(int a = 0; a < 3; ++a) nonzero += w[a] > 0;
+    if(nonzero == 1) {
+      for(int a = 0; a < 3; ++a) if(w[a] == f) key = {{c[a], -1, -1, 0}};
+    } else if(nonzero == 2) {
+      int a = 0;
+      while(w[a] == 0) ++a;
+      int b = a + 1;
+      while(w[b] == 0) ++b;
+      // the edge (c[a], c[b]) with w[b] steps from c[a]: store from the lower vertex
+      if(c[a] < c[b]) key = {{c[a], c[b], w[b], 1}};
+      else key = {{c[b], c[a], w[a], 1}};
+    } else {
+      key = {{face, i, j, 2}};
+    }
+    auto it = id.find(key);
+    if(it != id.end()) return it->second;
+    Eigen::Vector3d p = Eigen::Vector3d::Zero();
+    for(int a = 0; a < 3; ++a) p += w[a] * Eigen::Vector3d(V[c[a]][0], V[c[a]][1], V[c[a]][2]);
+    P.push_back(p.normalized());
+    return id[key] = int(P.size()) - 1;
+  };
+  for(int face = 0; face < 20; ++face)
+    for(int i = 0; i < f; ++i)
+      for(int j = 0; i + j < f; ++j) {
+        G.emplace_back(vertex(face, i, j), vertex(face, i + 1, j), vertex(face, i, j + 1));
+        if(i + j + 1 < f) G.emplace_back(vertex(face, i + 1, j), vertex(face, i + 1, j + 1), vertex(face, i, j + 1));
+      }
+  Triangle_arrays a;
+  a.X.resize(Eigen::Index(P.size()), 3);
+  for(std::size_t k = 0; k < P.size(); ++k) a.X.row(k) = P[k].transpose();
+  a.F.resize(Eigen::Index(G.size()), 3);
+  for(std::size_t k = 0; k < G.size(); ++k) a.F.row(k) = G[k].transpose();
+  if(count_inverted_faces_about_center(a.X, a.F) > 0) a.F.col(1).swap(a.F.col(2));
+  return a;
+}
+
+/// Adds `extra` vertices to a mesh of the unit sphere by splitting one edge
+/// in each of `extra` faces spread uniformly (the faces containing `extra`
+/// Fibonacci directions; each face and its neighbour take one split at most).
+inline void insert_spread_vertices(Triangle_arrays& a, Eigen::Index extra)
+{
+  if(extra <= 0) return;
+  const Spherical_point_locator locator(a.X, a.F, 1);
+  const Face_neighbor_matrix N = face_neighbors(a.F, Vertex_faces(a.F, a.X.rows()));
+  const Matrix D = fibonacci_sphere_points(extra);
+  std::vector<char> used(static_cast<std::size_t>(a.F.rows()), 0);
+  std::vector<std::array<Eigen::Index, 2> > splits; // (face, corner opposite the split edge)
+  for(Eigen::Index s = 0; s < extra; ++s) {
+    Eigen::Index k = locator.locate(row_vector3(D, s));
+    // the face itself or, if taken, a free neighbour; split its longest edge whose other face is free
+    std::array<Eigen::Index, 2> best{{-1, -1}};
+    double best_length = -1;
+    for(int attempt = 0; attempt < 4 && best[0] < 0; ++attempt) {
+      const Eigen::Index c = attempt == 0 ? k : N(k, attempt - 1);
+      if(used[c]) continue;
+      for(int e = 0; e < 3; ++e) {
+        const Eigen::Index g = N(c, e);
+        if(used[g]) continue;
+        const double l = (a.X.row(a.F(c, (e + 1) % 3)) - a.X.row(a.F(c, (e + 2) % 3))).norm();
+        if(l > best_length) { best_length = l; best = {{c, e}}; }
+      }
+    }
+    if(best[0] < 0) continue;
+    used[best[0]] = used[N(best[0], best[1])] = 1;
+    splits.push_back(best);
   }
-  return F;
+  const Eigen::Index n0 = a.X.rows(), m0 = a.F.rows(), added = Eigen::Index(splits.size());
+  a.X.conservativeResize(n0 + added, 3);
+  a.F.conservativeResize(m0 + 2 * added, 3);
+  for(Eigen::Index s = 0; s < added; ++s) {
+    const Eigen::Index k = splits[s][0];
+    const int c = int(splits[s][1]);
+    const Eigen::Index g = N(k, c);
+    const int p = a.F(k, c), i = a.F(k, (c + 1) % 3), j = a.F(k, (c + 2) % 3);
+    int e = 0;
+    while(a.F(g, e) == i || a.F(g, e) == j) ++e;
+    const int q = a.F(g, e);
+    const int mid = int(n0 + s);
+    a.X.row(mid) = (a.X.row(i) + a.X.row(j)).normalized();
+    // (p, i, j) and (q, j, i) become (p, i, mid), (p, mid, j), (q, j, mid), (q, mid, i)
+    a.F.row(k) << p, i, mid;
+    a.F.row(m0 + 2 * s) << p, mid, j;
+    a.F.row(g) << q, j, mid;
+    a.F.row(m0 + 2 * s + 1) << q, mid, i;
+  }
+  // a collision left some Fibonacci directions without a split: retry with as many
+  if(added < extra) insert_spread_vertices(a, extra - added);
 }
 
 /// The closest-in-direction point of the ellipsoid (radial projection).
@@ -115,42 +199,40 @@ inline double corner_angle(const Eigen::Vector3d& apex, const Eigen::Vector3d& p
 inline std::size_t delaunay_flip_pass(const Matrix& X, Index_matrix& F)
 {
   const Eigen::Index n = X.rows(), m = F.rows();
-  auto key = [n](long long i, long long j) { return i * n + j; };
-  std::unordered_map<long long, int> directed; // directed edge -> halfedge 3k + c (from corner c to c+1)
-  directed.reserve(static_cast<std::size_t>(3 * m));
-  std::unordered_set<long long> undirected;
-  undirected.reserve(static_cast<std::size_t>(3 * m));
-  for(Eigen::Index k = 0; k < m; ++k)
-    for(int c = 0; c < 3; ++c) {
-      const int i = F(k, c), j = F(k, (c + 1) % 3);
-      directed[key(i, j)] = int(3 * k + c);
-      undirected.insert(key(std::min(i, j), std::max(i, j)));
-    }
+  const Vertex_faces vf(F, n);
+  const Face_neighbor_matrix N = face_neighbors(F, vf);
+  std::unordered_set<long long> created; // edges made by this pass (vf is not updated)
+  auto key = [n](long long i, long long j) { return std::min(i, j) * n + std::max(i, j); };
+  auto has_edge = [&](int a, int b) {
+    if(created.count(key(a, b))) return true;
+    for(Eigen::Index s = vf.begin(a); s < vf.end(a); ++s)
+      for(int c = 0; c < 3; ++c)
+        if(F(vf.faces[s], c) == b) return true;
+    return false;
+  };
   std::vector<char> touched(static_cast<std::size_t>(m), 0);
   const Epick::Point_3 origin(0, 0, 0);
   auto point = [&X](int i) { return Epick::Point_3(X(i, 0), X(i, 1), X(i, 2)); };
   std::size_t flips = 0;
   for(Eigen::Index k = 0; k < m; ++k)
     for(int c = 0; c < 3 && !touched[k]; ++c) {
-      const int i = F(k, c), j = F(k, (c + 1) % 3), a = F(k, (c + 2) % 3);
-      if(i > j) continue; // each edge once
-      const auto it = directed.find(key(j, i));
-      if(it == directed.end()) continue;
-      const int g = it->second / 3, e = it->second % 3;
-      if(touched[g]) continue;
-      const int b = F(g, (e + 2) % 3);
+      // edge (i, j) opposite corner c = a; across it face g with opposite vertex b
+      const int a = F(k, c), i = F(k, (c + 1) % 3), j = F(k, (c + 2) % 3);
+      const Eigen::Index g = N(k, c);
+      if(g < 0 || touched[g]) continue;
+      int e = 0;
+      while(e < 3 && (F(g, e) == i || F(g, e) == j)) ++e;
+      const int b = F(g, e);
       const double opposite = corner_angle(row_vector3(X, a), row_vector3(X, i), row_vector3(X, j)) +
                               corner_angle(row_vector3(X, b), row_vector3(X, j), row_vector3(X, i));
-      if(opposite <= M_PI + 1e-12) continue;
-      if(a == b || undirected.count(key(std::min(a, b), std::max(a, b)))) continue;
-      // (i, j, a) and (j, i, b) become (i, b, a) and (j, a, b)
-      if(CGAL::orientation(origin, point(i), point(b), point(a)) != CGAL::POSITIVE ||
-         CGAL::orientation(origin, point(j), point(a), point(b)) != CGAL::POSITIVE)
+      if(opposite <= M_PI + 1e-12 || a == b || has_edge(a, b)) continue;
+      // (a, i, j) and (b, j, i) become (a, i, b) and (b, j, a)
+      if(CGAL::orientation(origin, point(a), point(i), point(b)) != CGAL::POSITIVE ||
+         CGAL::orientation(origin, point(b), point(j), point(a)) != CGAL::POSITIVE)
         continue;
-      F.row(k) << i, b, a;
-      F.row(g) << j, a, b;
-      undirected.erase(key(std::min(i, j), std::max(i, j)));
-      undirected.insert(key(std::min(a, b), std::max(a, b)));
+      F.row(k) << a, i, b;
+      F.row(g) << b, j, a;
+      created.insert(key(a, b));
       touched[k] = touched[g] = 1;
       ++flips;
     }
@@ -175,18 +257,20 @@ inline std::vector<std::array<int, 2> > mesh_edges(const Index_matrix& F)
   return e;
 }
 
-/// The DistMesh displacement: every edge shorter than 1.2 x the r.m.s. edge
-/// length pushes its endpoints apart in proportion to the shortfall.
-inline Matrix distmesh_forces(const Matrix& X, const std::vector<std::array<int, 2> >& edges)
+/// Spring displacement towards equal edge lengths: every edge pulls or
+/// pushes its endpoints in proportion to its deviation from the mean length.
+/// At rest all edges have the same length, so the triangles are equilateral
+/// and of equal area as far as the connectivity allows.
+inline Matrix equal_length_springs(const Matrix& X, const std::vector<std::array<int, 2> >& edges)
 {
-  double sum_sq = 0;
-  for(const auto& e : edges) sum_sq += (X.row(e[0]) - X.row(e[1])).squaredNorm();
-  const double target = 1.2 * std::sqrt(sum_sq / double(edges.size()));
+  double sum = 0;
+  for(const auto& e : edges) sum += (X.row(e[0]) - X.row(e[1])).norm();
+  const double target = sum / double(edges.size());
   Matrix D = Matrix::Zero(X.rows(), 3);
   for(const auto& e : edges) {
     const Eigen::RowVector3d d = X.row(e[0]) - X.row(e[1]);
     const double l = d.norm();
-    if(!(l > 0) || l >= target) continue;
+    if(!(l > 0)) continue;
     const Eigen::RowVector3d f = (target - l) / l * d;
     D.row(e[0]) += f;
     D.row(e[1]) -= f;
@@ -194,30 +278,52 @@ inline Matrix distmesh_forces(const Matrix& X, const std::vector<std::array<int,
   return D;
 }
 
-/// DistMesh relaxation on the ellipsoid with radii `radii` (the sphere for
-/// (1,1,1)), keeping every face positively oriented about the origin.
+/// Keeps the tangential part of the displacements D: the normal part only
+/// moves the points off the surface, and the radial projection back would turn
+/// it into a drift along the surface where the surface is not a sphere.
+inline void remove_normal_components(const Matrix& X, const Eigen::Vector3d& radii, Matrix& D)
+{
+  const Eigen::Vector3d w = radii.cwiseProduct(radii).cwiseInverse();
+  for(Eigen::Index i = 0; i < X.rows(); ++i) {
+    const Eigen::Vector3d n = row_vector3(X, i).cwiseProduct(w).normalized();
+    const Eigen::Vector3d d = row_vector3(D, i);
+    D.row(i) = (d - d.dot(n) * n).transpose();
+  }
+}
+
+/// Spring relaxation on the ellipsoid with radii `radii` (the sphere for
+/// (1,1,1)): steps of 0.3 x the spring displacement, radial projection back
+/// onto the surface (displacements made tangential first), intrinsic Delaunay
+/// flips after each of the first 20 steps and then every 10; a step that
+/// would invert a face (exact orientation about the origin) is halved.
 inline void relax_on_ellipsoid(Matrix& X, Index_matrix& F, const Eigen::Vector3d& radii, int iterations)
 {
-  double dt = 0.2;
+  std::vector<std::array<int, 2> > edges = mesh_edges(F);
   for(int it = 0; it < iterations; ++it) {
-    const Matrix D = distmesh_forces(X, mesh_edges(F));
+    Matrix D = equal_length_springs(X, edges);
+    remove_normal_components(X, radii, D);
+    double dt = 0.3;
     for(int attempt = 0; attempt < 8; ++attempt) {
       Matrix Y = X + dt * D;
       project_radially(Y, radii);
       if(count_inverted_faces_about_center(Y, F) == 0) { X.swap(Y); break; }
       dt *= 0.5;
     }
-    delaunay_flips(X, F);
+    if(it < 20 || (it + 1) % 10 == 0 || it + 1 == iterations) {
+      delaunay_flips(X, F);
+      edges = mesh_edges(F);
+    }
   }
 }
 
-/// Number of relaxation steps: enough for the polar defects of the lattice
-/// and the linear map's distortion to even out (measured: the quality stops
-/// improving after about this many on the sphere and on a 3:2:1 ellipsoid).
-inline int relaxation_iterations(const Eigen::Vector3d& radii)
+/// Number of relaxation steps: 60 on the geodesic sphere (measured: delta_size
+/// and delta_shape stop improving there), more to heal many inserted vertices
+/// (up to 20 % for small n) and on elongated ellipsoids, whose initial
+/// triangles carry the distortion of the linear map.
+inline int relaxation_iterations(const Eigen::Vector3d& radii, double inserted_fraction)
 {
   const double anisotropy = radii.maxCoeff() / radii.minCoeff();
-  return static_cast<int>(std::min(200., 20. + 30. * std::log2(anisotropy)));
+  return static_cast<int>(std::min(400., 60. + 1000. * inserted_fraction + 60. * std::log2(anisotropy)));
 }
 
 inline void check_vertex_count(Eigen::Index n, Eigen::Index minimum)
@@ -232,30 +338,14 @@ inline void check_vertex_count(Eigen::Index n, Eigen::Index minimum)
 inline Triangle_arrays uniform_ellipsoid_mesh(Eigen::Index n, const Eigen::Vector3d& radii)
 {
   check_vertex_count(n, 12);
-  Triangle_arrays t;
-  const Matrix S = fibonacci_sphere_points(n);
-  t.F = convex_hull_faces(S);
-  t.X = S * radii.asDiagonal();
-  relax_on_ellipsoid(t.X, t.F, radii, relaxation_iterations(radii));
+  const int f = std::max(1, static_cast<int>(std::floor(std::sqrt((double(n) - 2.) / 10.))));
+  Triangle_arrays t = geodesic_sphere(f);
+  const double inserted_fraction = double(n - t.X.rows()) / double(n);
+  insert_spread_vertices(t, n - t.X.rows());
+  delaunay_flips(t.X, t.F);
+  t.X = t.X * radii.asDiagonal(); // linear: every face stays positively oriented about the origin
+  relax_on_ellipsoid(t.X, t.F, radii, relaxation_iterations(radii, inserted_fraction));
   return t;
-}
-
-/// Rows (nv) and columns (nu) of the torus lattice: nv even, nu x nv within
-/// 1 % of n when possible, columns and rows in the ratio of equilateral
-/// triangles on the torus (nu / nv = sqrt(3)/2 R / r), best compromise otherwise.
-inline std::array<int, 2> torus_lattice_size(Eigen::Index n, double R, double r)
-{
-  const double ideal_rows = std::sqrt(double(n) * 2. * r / (std::sqrt(3.) * R));
-  std::array<int, 2> best{{0, 0}};
-  double best_cost = std::numeric_limits<double>::infinity();
-  for(int nv = 4; nv <= std::max(4, int(3 * ideal_rows) + 4); nv += 2) {
-    const int nu = std::max(3, int(std::lround(double(n) / nv)));
-    const double count_error = std::abs(double(nu) * nv - double(n)) / double(n);
-    const double aspect_error = std::abs(std::log(nv / ideal_rows));
-    const double cost = (count_error <= 0.01 ? 0. : 100. * count_error) + aspect_error;
-    if(cost < best_cost) { best_cost = cost; best = {{nu, nv}}; }
-  }
-  return best;
 }
 
 /// The exponent beta of the row spacing (see the file comment).
@@ -266,7 +356,7 @@ inline double torus_row_exponent(double R, double r, double delta_size_target)
 }
 
 /// Angles theta_j of the nv rows, j = 0..nv-1, with d(theta) proportional to
-/// (R + r cos theta)^beta, theta_0 = -pi (the inner equator, where the flat
+/// (R + r cos theta)^beta (equal steps of the integral of w^-beta), theta_0 = -pi (the inner equator, where the flat
 /// torus of the package has its seam), integrated numerically.
 inline std::vector<double> torus_row_angles(int nv, double R, double r, double beta)
 {
@@ -274,7 +364,7 @@ inline std::vector<double> torus_row_angles(int nv, double R, double r, double b
   std::vector<double> cumulative(samples + 1, 0.);
   for(int s = 0; s < samples; ++s) {
     const double theta = -M_PI + (s + 0.5) * 2 * M_PI / samples;
-    cumulative[s + 1] = cumulative[s] + std::pow(R + r * std::cos(theta), beta);
+    cumulative[s + 1] = cumulative[s] + std::pow(R + r * std::cos(theta), -beta);
   }
   std::vector<double> rows(nv);
   int s = 0;
@@ -287,13 +377,10 @@ inline std::vector<double> torus_row_angles(int nv, double R, double r, double b
   return rows;
 }
 
-/// Triangular lattice on the torus (R, r) with about n vertices (see
-/// torus_lattice_size()), every vertex of valence 6, faces oriented outward.
-inline Triangle_arrays uniform_torus_mesh(Eigen::Index n, double R, double r, double delta_size_target = 0.69)
+/// Triangular lattice of nu x nv vertices (nv even) on the torus (R, r),
+/// every vertex of valence 6, faces oriented outward.
+inline Triangle_arrays torus_lattice(int nu, int nv, double R, double r, double delta_size_target)
 {
-  check_vertex_count(n, 16);
-  const std::array<int, 2> size = torus_lattice_size(n, R, r);
-  const int nu = size[0], nv = size[1];
   const std::vector<double> theta = torus_row_angles(nv, R, r, torus_row_exponent(R, r, delta_size_target));
   Triangle_arrays t;
   t.X.resize(Eigen::Index(nu) * nv, 3);
@@ -320,6 +407,45 @@ inline Triangle_arrays uniform_torus_mesh(Eigen::Index n, double R, double r, do
     }
   // u grows with the longitude and v with theta: (u, v) counter-clockwise is outward on the torus
   return t;
+}
+
+/// The lattice with about n vertices: among the sizes nu x nv (nv even) within
+/// 1 % of n (the nearest to n if none is), the one with the lowest delta_shape
+/// (each candidate is built and measured: a few milliseconds).
+inline Triangle_arrays uniform_torus_mesh(Eigen::Index n, double R, double r, double delta_size_target = 0.69)
+{
+  check_vertex_count(n, 16);
+  std::vector<std::array<int, 2> > candidates;
+  double nearest = std::numeric_limits<double>::infinity();
+  std::array<int, 2> nearest_size{{0, 0}};
+  for(int nv = 4; nv * 3 <= n; nv += 2)
+    for(int nu = std::max(3, int(n / nv) - 1); nu <= int(n / nv) + 1; ++nu) {
+      const double error = std::abs(double(nu) * nv - double(n)) / double(n);
+      if(error <= 0.01) candidates.push_back({{nu, nv}});
+      if(error < nearest) { nearest = error; nearest_size = {{nu, nv}}; }
+    }
+  if(candidates.empty()) candidates.push_back(nearest_size);
+  // equilateral on average: nu / nv near sqrt(3)/2 R / r; keep the plausible ones
+  const double ideal = std::sqrt(3.) / 2 * R / r;
+  std::sort(candidates.begin(), candidates.end(), [ideal](const std::array<int, 2>& a, const std::array<int, 2>& b) {
+    return std::abs(std::log(double(a[0]) / a[1] / ideal)) < std::abs(std::log(double(b[0]) / b[1] / ideal));
+  });
+  if(candidates.size() > 8) candidates.resize(8);
+  Triangle_arrays best;
+  double best_shape = std::numeric_limits<double>::infinity();
+  for(const auto& c : candidates) {
+    // the row exponent comes from the continuous torus; coarse lattices (few
+    // rows) can exceed the size target by the discretization: tighten it
+    double target = delta_size_target;
+    Triangle_arrays t = torus_lattice(c[0], c[1], R, r, target);
+    for(int retry = 0; retry < 6 && mesh_uniformity(t.X, t.F).delta_size > delta_size_target; ++retry) {
+      target *= 0.9;
+      t = torus_lattice(c[0], c[1], R, r, target);
+    }
+    const double shape = mesh_uniformity(t.X, t.F).delta_shape;
+    if(shape < best_shape) { best_shape = shape; best = std::move(t); }
+  }
+  return best;
 }
 
 } // namespace internal

@@ -1,0 +1,178 @@
+// Copyright (c) 2026 Density_equalizing_maps contributors.
+// This file is part of Density_equalizing_maps, a third-party CGAL package.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// `dem remesh INPUT --via METHOD --vertices N [METHOD's options] --output FILE --metrics FILE`
+// (DESIGN.md): map INPUT with METHOD exactly as `dem METHOD` does, then pull a
+// uniform mesh of the domain with N vertices back to INPUT
+// (remesh_through_map). The metrics are the map's plus delta_size,
+// delta_shape, remesh_vertices, remesh_faces and remesh_seconds (the
+// remeshing alone, after the map); --output receives the remeshed surface.
+
+#include "commands.h"
+#include "maps.h"
+#include "metrics.h"
+
+#include <CGAL/Density_equalizing_maps/remeshing.h>
+
+#include <exception>
+#include <iostream>
+#include <new>
+#include <string>
+#include <vector>
+
+namespace dem_cli {
+
+namespace {
+
+/// Takes `--via M` and `--vertices N` out of the arguments; the rest is a map
+/// command line `M INPUT [options]`.
+bool split_remesh_arguments(const std::vector<std::string>& args, std::vector<std::string>& map_args,
+                            std::size_t& vertices, std::string& error)
+{
+  std::string via, count;
+  std::vector<std::string> rest;
+  for(std::size_t i = 0; i < args.size(); ++i) {
+    if(args[i] == "--via" || args[i] == "--vertices") {
+      if(i + 1 >= args.size()) { error = "option " + args[i] + " needs a value"; return false; }
+      std::string& target = args[i] == "--via" ? via : count;
+      target = args[i + 1];
+      ++i;
+    } else {
+      rest.push_back(args[i]);
+    }
+  }
+  if(via.empty()) { error = "remesh needs --via METHOD"; return false; }
+  if(count.empty()) { error = "remesh needs --vertices N"; return false; }
+  try {
+    std::size_t used = 0;
+    const long long n = std::stoll(count, &used);
+    if(used != count.size() || n <= 0) throw std::invalid_argument(count);
+    vertices = std::size_t(n);
+  } catch(const std::exception&) {
+    error = "option --vertices: \"" + count + "\" is not a positive integer";
+    return false;
+  }
+  map_args.assign(1, via);
+  map_args.insert(map_args.end(), rest.begin(), rest.end());
+  return true;
+}
+
+/// The domain of the map that `run` produced, with the radii it reports.
+template <class F>
+DEM::Remeshing_report remesh_on_domain(const Options& opt, const Run& run, F remesh)
+{
+  switch(domain_of(opt.method)) {
+    case Domain::SPHERE: return remesh(DEM::Unit_sphere_domain());
+    case Domain::ELLIPSOID: {
+      const std::vector<double>& r = run.report.radii;
+      if(r.size() != 3) throw std::logic_error("the ellipsoidal map reported no radii");
+      return remesh(DEM::Ellipsoid_domain{r[0], r[1], r[2]});
+    }
+    case Domain::TORUS: return remesh(DEM::Torus_domain{(*opt.torus)[0], (*opt.torus)[1]});
+  }
+  throw std::logic_error("unknown domain");
+}
+
+DI::Index_matrix face_matrix(const Mesh& m)
+{
+  DI::Index_matrix F(Eigen::Index(m.number_of_faces()), 3);
+  Eigen::Index k = 0;
+  for(Face f : m.faces()) {
+    int c = 0;
+    for(Vertex v : vertices_around_face(m.halfedge(f), m)) F(k, c++) = int(v.idx());
+    ++k;
+  }
+  return F;
+}
+
+int remesh_command(const std::vector<std::string>& args)
+{
+  for(const std::string& a : args)
+    if(a == "--help" || a == "-h") { std::cout << usage_text(); return 0; }
+  Options opt;
+  std::size_t vertices = 0;
+  {
+    std::vector<std::string> map_args;
+    std::string error;
+    if(!split_remesh_arguments(args, map_args, vertices, error) ||
+       parse_command_line(map_args, opt, error) == Parse_status::ERROR) {
+      std::cerr << "dem remesh: " << error << "\n(dem --help prints the usage)\n";
+      return 2;
+    }
+  }
+  if(vertices < 12) { // before the map: a refused request costs nothing
+    std::cerr << "dem: invalid input: at least 12 vertices must be requested for a remeshed surface (got "
+              << vertices << ")\n";
+    return 3;
+  }
+  Problem pb;
+  Run run;
+  Mesh remeshed;
+  DEM::Remeshing_report remesh;
+  double remesh_seconds = 0, remesh_cpu = 0;
+  try {
+    read_mesh(opt, pb);
+    read_sidecars(opt, pb);
+    run = run_map(pb, opt);
+    for(const std::string& n : run.notes) std::cerr << "dem: " << n << "\n";
+    if(run.report.fold_overs == 0 && run.report.termination != DEM::Termination::STALLED) {
+      Point_map mapped = fresh_point_map(pb.mesh, "v:dem_remesh_map");
+      for(Vertex v : pb.mesh.vertices())
+        put(mapped, v, Point_3(run.Y(v.idx(), 0), run.Y(v.idx(), 1), run.Y(v.idx(), 2)));
+      const Stopwatch watch;
+      remesh = remesh_on_domain(opt, run, [&](const auto& domain) {
+        return DEM::remesh_through_map(pb.mesh, mapped, domain, vertices, remeshed);
+      });
+      watch.stop(remesh_seconds, remesh_cpu);
+    }
+  } catch(const DEM::Invalid_input& e) {
+    std::cerr << "dem: invalid input: " << e.what() << "\n";
+    return 3;
+  } catch(const std::bad_alloc&) {
+    std::cerr << "dem: out of memory\n";
+    return 4;
+  } catch(const std::exception& e) {
+    std::cerr << "dem: remesh via " << method_name(opt.method) << " failed: " << e.what() << "\n";
+    return 4;
+  }
+
+  Metrics m = map_metrics(pb, opt, run);
+  const bool failed = run.report.fold_overs > 0 || run.report.termination == DEM::Termination::STALLED;
+  m.add("delta_size", failed ? Metrics::NA : remesh.delta_size);
+  m.add("delta_shape", failed ? Metrics::NA : remesh.delta_shape);
+  m.add("remesh_vertices", failed ? Metrics::NA : double(remesh.vertices));
+  m.add("remesh_faces", failed ? Metrics::NA : double(remesh.faces));
+  m.add("remesh_seconds", failed ? Metrics::NA : remesh_seconds);
+  m.add("domain_delta_size", failed ? Metrics::NA : remesh.domain_delta_size);
+  m.add("domain_delta_shape", failed ? Metrics::NA : remesh.domain_delta_shape);
+  if(!opt.metrics.empty() && !write_metrics_json(opt.metrics, m)) {
+    std::cerr << "dem: cannot write " << opt.metrics << "\n";
+    return 3;
+  }
+  std::cout << summary_line(m);
+  if(!failed)
+    std::cout << " | remeshed: " << remesh.vertices << " vertices, delta_size " << remesh.delta_size
+              << ", delta_shape " << remesh.delta_shape << ", " << remesh_seconds << " s";
+  std::cout << std::endl;
+  if(failed) {
+    std::cerr << "dem: " << method_name(opt.method) << " could not produce a fold-over-free map ("
+              << run.report.fold_overs << " fold-over(s)); nothing remeshed"
+              << (opt.output.empty() ? "" : ", nothing written to " + opt.output) << "\n";
+    return 4;
+  }
+  if(!opt.output.empty() && !write_output(opt.output, to_matrix(remeshed, remeshed.points()), face_matrix(remeshed))) {
+    std::cerr << "dem: cannot write " << opt.output << "\n";
+    return 3;
+  }
+  return 0;
+}
+
+} // namespace
+
+const Application remesh_application = {
+  "remesh",
+  "remesh INPUT --via METHOD --vertices N [METHOD's options] --output FILE --metrics FILE",
+  remesh_command};
+
+} // namespace dem_cli
