@@ -110,6 +110,7 @@ struct Map_report
   std::string message;
 
   /// appends a fallback description to `fallback`
+  /// \param what the fallback taken (ignored when empty)
   void add_fallback(const std::string& what)
   {
     if(what.empty()) return;

@@ -113,6 +113,8 @@ constexpr unsigned freesurfer_curv_magic = 0xFFFFFF;
 
 /// \ingroup PkgDensityEqualizingMapsIO
 /// True if the file starts with the magic number of a FreeSurfer triangle surface.
+/// \param filename the file to test
+/// \returns true if the file starts with the magic number of a FreeSurfer triangle surface (FF FF FE)
 inline bool is_FreeSurfer_surface(const std::string& filename)
 {
   std::ifstream in(filename, std::ios::binary);

@@ -316,6 +316,8 @@ inline void write_gifti_header(std::ostream& os, int arrays)
 /// \brief Reads every data array of a GIfTI file.
 /// \throws Invalid_input for a missing file, a file without `<GIFTI`, or an array that cannot be decoded
 ///         (the message names the array and the reason)
+/// \param filename the GIfTI file
+/// \returns the data arrays in file order
 inline std::vector<GIfTI_data_array> read_GIfTI_data_arrays(const std::string& filename)
 {
   std::ifstream in(filename, std::ios::binary);
@@ -341,6 +343,8 @@ inline std::vector<GIfTI_data_array> read_GIfTI_data_arrays(const std::string& f
 /// \ingroup PkgDensityEqualizingMapsIO
 /// \brief Reads a GIfTI surface: its `NIFTI_INTENT_POINTSET` (n x 3) and `NIFTI_INTENT_TRIANGLE` (m x 3) arrays.
 /// \throws Invalid_input if either array is missing or malformed, or a vertex index is out of range
+/// \param filename the `.surf.gii` file
+/// \returns the vertices and triangles of the surface
 inline Triangle_soup read_GIfTI_surface(const std::string& filename)
 {
   const GIfTI_data_array *points = nullptr, *triangles = nullptr;
@@ -377,6 +381,10 @@ inline Triangle_soup read_GIfTI_surface(const std::string& filename)
 /// data array number `index` among the arrays that are neither POINTSET nor TRIANGLE,
 /// which must hold `expected_vertices` values (one column; 0 = no check).
 /// \throws Invalid_input if there is no such array, its size differs, or a value is not finite
+/// \param filename the GIfTI data file
+/// \param expected_vertices the number of values required (0: no check)
+/// \param index which per-vertex data array, counted from 0
+/// \returns one value per vertex
 inline std::vector<double> read_GIfTI_vertex_values(const std::string& filename, std::size_t expected_vertices = 0,
                                                     std::size_t index = 0)
 {
@@ -400,6 +408,8 @@ inline std::vector<double> read_GIfTI_vertex_values(const std::string& filename,
 /// \ingroup PkgDensityEqualizingMapsIO
 /// \brief Writes a GIfTI surface (`.surf.gii`): float32 POINTSET and int32 TRIANGLE arrays, Base64Binary.
 /// \throws Invalid_input if the file cannot be written
+/// \param filename the file to write
+/// \param s the surface
 inline void write_GIfTI_surface(const std::string& filename, const Triangle_soup& s)
 {
   std::vector<float> xyz;
@@ -425,6 +435,8 @@ inline void write_GIfTI_surface(const std::string& filename, const Triangle_soup
 /// \ingroup PkgDensityEqualizingMapsIO
 /// \brief Writes one float32 value per vertex as a GIfTI data file (`NIFTI_INTENT_SHAPE`, e.g. `.shape.gii`).
 /// \throws Invalid_input if the file cannot be written
+/// \param filename the file to write
+/// \param values one value per vertex
 inline void write_GIfTI_vertex_values(const std::string& filename, const std::vector<double>& values)
 {
   const std::vector<float> v(values.begin(), values.end());

@@ -30,6 +30,8 @@ using Rgb = std::array<unsigned char, 3>;
 /// \ingroup PkgDensityEqualizingMapsIO
 /// The viridis colour of `t` in [0, 1] (clamped; NaN gives the colour of 0):
 /// dark purple at 0, teal at 0.5, yellow at 1.
+/// \param t the position in the colour map, clamped to [0, 1]
+/// \returns the viridis colour at `t`
 inline Rgb viridis(double t)
 {
   static const double anchors[9][3] = {
@@ -64,6 +66,8 @@ struct Color_range
   bool logarithmic = false;
 
   /// t of a value: (v - low) / (high - low), on log(v) when logarithmic; 0.5 when the range is empty.
+  /// \param v a value of the quantity
+  /// \returns its position in [0, 1] in the colour map
   double parameter(double v) const
   {
     double a = low, b = high;
@@ -80,6 +84,9 @@ struct Color_range
 
 /// \ingroup PkgDensityEqualizingMapsIO
 /// The documented range of `Color_by` for these values (non-finite values ignored).
+/// \param by the quantity the values are
+/// \param values the per-face values
+/// \returns the documented colour range of that quantity for these values
 inline Color_range color_range(Color_by by, const std::vector<double>& values)
 {
   double max_abs = 0, lo = std::numeric_limits<double>::infinity(), hi = 0, max_log = 0;

@@ -38,6 +38,8 @@ struct Face_data
   std::vector<double> abs_mu;         ///< `|mu|(T)` as `beltrami_coefficient_magnitudes()`
 
   /// The values `by` selects.
+  /// \param by a quantity
+  /// \returns its per-face values
   const std::vector<double>& values(Color_by by) const
   {
     switch(by) {
@@ -51,6 +53,8 @@ struct Face_data
 
 /// \ingroup PkgDensityEqualizingMapsIO
 /// The name of a `Color_by` as used in files and on the command line: `darea`, `mu`, `density`, `population`.
+/// \param by a quantity
+/// \returns its command-line name (`darea`, `mu`, `density` or `population`)
 inline std::string color_by_name(Color_by by)
 {
   switch(by) {
@@ -64,6 +68,8 @@ inline std::string color_by_name(Color_by by)
 /// \ingroup PkgDensityEqualizingMapsIO
 /// Parses `darea`, `mu`, `density` or `population`.
 /// \throws Invalid_input naming the accepted words otherwise
+/// \param s the name
+/// \returns the quantity of that name
 inline Color_by color_by_from_name(const std::string& s)
 {
   for(Color_by by : {Color_by::log_area_ratio, Color_by::beltrami, Color_by::density, Color_by::population})
@@ -95,6 +101,7 @@ inline Color_by color_by_from_name(const std::string& s)
 ///   \cgalParamNEnd
 /// \cgalNamedParamsEnd
 /// \throws Invalid_input if a face is not a triangle
+/// \returns the per-face values of the map
 template <class TriangleMesh, class MappedPointMap, class NamedParameters = parameters::Default_named_parameters>
 Face_data face_data(const TriangleMesh& tm, MappedPointMap mapped,
                     const NamedParameters& np = parameters::default_values())

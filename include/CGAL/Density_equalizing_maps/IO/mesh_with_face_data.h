@@ -197,6 +197,11 @@ void write_PLY_with_face_data(const std::string& filename, const TriangleMesh& t
 /// `log_area_ratio`, `abs_mu`, `colors` (unsigned char RGB of the quantity `by`) and
 /// `POINT_DATA` `colors`. The title line records the colour range. Parameters as
 /// `write_PLY_with_face_data()`.
+/// \param filename the file to write
+/// \param tm the mesh
+/// \param points the positions written
+/// \param d the per-face values, from `face_data()`
+/// \param by the quantity the colours show
 template <class TriangleMesh, class PointMap>
 void write_VTK_with_face_data(const std::string& filename, const TriangleMesh& tm, PointMap points,
                               const Face_data& d, Color_by by)
@@ -235,6 +240,11 @@ void write_VTK_with_face_data(const std::string& filename, const TriangleMesh& t
 /// `abs_mu` (Float64) and `colors` (UInt8, 3 components, of the quantity `by`),
 /// `PointData` `colors`, and a `FieldData` array `color_range` = {low, high}.
 /// Parameters as `write_PLY_with_face_data()`.
+/// \param filename the file to write
+/// \param tm the mesh
+/// \param points the positions written
+/// \param d the per-face values, from `face_data()`
+/// \param by the quantity the colours show
 template <class TriangleMesh, class PointMap>
 void write_VTP_with_face_data(const std::string& filename, const TriangleMesh& tm, PointMap points,
                               const Face_data& d, Color_by by)

@@ -156,6 +156,7 @@ inline void add_textured_face(Textured_mesh& t, const std::array<std::size_t, 3>
 /// \param radii the semi-axes `(a, b, c)` (default the unit sphere)
 /// \param center the center (default the origin)
 /// \throws Invalid_input if a face is not a triangle or a radius is not positive
+/// \returns the textured mesh (positions, texture coordinates, faces of both)
 template <class TriangleMesh, class PointMap>
 Textured_mesh equirectangular_texture(const TriangleMesh& tm, PointMap points,
                                       const std::array<double, 3>& radii = {{1., 1., 1.}},
@@ -209,6 +210,7 @@ Textured_mesh equirectangular_texture(const TriangleMesh& tm, PointMap points,
 /// \param r the minor radius, period `2 pi r` in `v`
 /// \throws Invalid_input if a face is not a triangle, the radii are not positive or the
 ///         offsets of a face do not sum to zero
+/// \returns the textured mesh (positions, texture coordinates, faces of both)
 template <class TriangleMesh, class PointMap, class FlatMap, class OffsetMap>
 Textured_mesh flat_torus_texture(const TriangleMesh& tm, PointMap points, FlatMap flat, OffsetMap offsets,
                                  double R, double r)
@@ -252,6 +254,9 @@ Textured_mesh flat_torus_texture(const TriangleMesh& tm, PointMap points, FlatMa
 
 /// \ingroup PkgDensityEqualizingMapsIO
 /// Signed area of the texture triangle of face `k` (positive when counter-clockwise).
+/// \param t a textured mesh
+/// \param k a face index of `t`
+/// \returns the signed area of face `k` in texture space
 inline double texture_area(const Textured_mesh& t, std::size_t k)
 {
   const auto& a = t.uv[t.uv_faces[k][0]];

@@ -78,6 +78,9 @@ inline std::vector<double> face_areas(const Triangle_soup& s)
 /// \ingroup PkgDensityEqualizingMapsIO
 /// The soup of `tm` with the positions `points` (3D, or 2D read with z = 0).
 /// \throws Invalid_input unless every face is a triangle
+/// \param tm a triangle mesh
+/// \param points the positions of its vertices
+/// \returns the soup, vertices in the order of `vertices(tm)`
 template <class TriangleMesh, class PointMap>
 Triangle_soup triangle_soup(const TriangleMesh& tm, PointMap points)
 {
@@ -105,6 +108,8 @@ Triangle_soup triangle_soup(const TriangleMesh& tm, PointMap points)
 /// Builds `tm` (cleared first) from the soup, with `CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh()`:
 /// vertices and faces keep the soup's order.
 /// \throws Invalid_input if the soup is not an oriented 2-manifold (after repair of nothing: it must be one already)
+/// \param s the soup
+/// \param tm receives the mesh
 template <class TriangleMesh>
 void triangle_soup_to_mesh(const Triangle_soup& s, TriangleMesh& tm)
 {
