@@ -121,8 +121,8 @@ inline Output_kind output_kind(const std::string& file, const std::string& force
   if(e == ".gii") return Output_kind::GIFTI;
   if(e == ".off" || e == ".stl" || e == ".ts") return Output_kind::POSITIONS;
   if(e.empty() || has_hemisphere_prefix(file)) return Output_kind::FREESURFER;
-  throw Format_usage_error("cannot tell the format of \"" + file + "\" from its extension \"" + e +
-                           "\"; written formats: " + output_formats_text());
+  throw Format_usage_error("cannot tell the format of \"" + file + "\": unsupported format " + e +
+                           "; written formats: " + output_formats_text());
 }
 
 /// The colour writers of --output-input-colored: .ply, .vtk or .vtp.
