@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include <sys/stat.h> // stat, umask
 #include <sys/wait.h> // WIFEXITED
 #include <unistd.h>   // getpid
 
@@ -246,6 +247,15 @@ int main()
       check(!r.out.empty() && contains(r.out, "spherical-conformal"), "one-line summary on stdout");
       check_metrics(metrics, "spherical-conformal", sphere.V.size(), sphere.T.size());
       check_output(output, sphere, unit_sphere_residual, "spherical-conformal output");
+      // written through a temporary file, yet with the permissions of any new
+      // file (0666 less the umask), not the temporary's owner-only 0600
+      const mode_t mask = ::umask(0);
+      ::umask(mask);
+      struct stat st;
+      check(::stat(output.c_str(), &st) == 0 && (st.st_mode & 0777) == (0666 & ~mask),
+            "the output has the permissions of a new file (0666 less the umask)");
+      check(::stat(metrics.c_str(), &st) == 0 && (st.st_mode & 0777) == (0666 & ~mask),
+            "the metrics file has the permissions of a new file (0666 less the umask)");
     }
     fs::remove(output);
     fs::remove(metrics);

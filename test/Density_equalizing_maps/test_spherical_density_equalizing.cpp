@@ -474,9 +474,33 @@ void test_lsdem()
 
 } // namespace
 
+// The stage names a progress display shows (named parameter stage_callback):
+// every stage of the run is announced once, in the order it runs, and the
+// iterations come after the initial map they start from.
+void test_stage_callback()
+{
+  Mesh m = icosphere(3);
+  const Face_values pop = cap_population(m, 10.);
+  std::vector<std::string> stages;
+  auto record = [&](const std::string& name) { stages.push_back(name); };
+  Point_map out = output_map(m, "v:sdem_stages");
+  DEM::spherical_density_equalizing_map(m, out, P::combine(P::stage_callback(record), P::face_population_map(pop)));
+  const std::vector<std::string> expected = {"validation", "harmonic map (cotangent Laplacian, sparse Cholesky)",
+                                             "south-chart LBS correction", "Moebius area correction",
+                                             "density-equalizing iterations"};
+  check(stages == expected, "SDEM announces validation, harmonic map, south-chart LBS, Moebius correction and the "
+                            "iterations, in this order (" + std::to_string(stages.size()) + " stages)");
+  stages.clear();
+  Point_map sphere = output_map(m, "v:scm_stages");
+  DEM::spherical_conformal_map(m, sphere, P::combine(P::mobius_area_correction(true), P::stage_callback(record)));
+  check(stages.size() == 5 && stages[3] == "Moebius area correction" && stages[4] == "exact fold-over count",
+        "the conformal map announces the Moebius correction and the exact fold-over count");
+}
+
 int main()
 {
   Stopwatch total;
+  test_stage_callback();
   test_smooth_cap_population();
   test_step_cap_population();
   test_extreme_population();

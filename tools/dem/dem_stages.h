@@ -51,9 +51,23 @@ public:
   {
     std::lock_guard<std::mutex> lock(m_mutex);
     end_locked();
+    m_top = name;
+    m_top_tolerance = tolerance;
     m_stage = name;
     m_start = std::chrono::steady_clock::now();
     m_tolerance = tolerance;
+    m_iteration = 0;
+    m_error = m_previous_error = -1;
+  }
+  /// Starts a part of the current stage, named by the library (its
+  /// `stage_callback`): shown as "stage: part", timed on its own.
+  void substage(const std::string& part)
+  {
+    std::lock_guard<std::mutex> lock(m_mutex);
+    end_locked();
+    m_stage = m_top.empty() ? part : m_top + ": " + part;
+    m_start = std::chrono::steady_clock::now();
+    m_tolerance = m_top_tolerance;
     m_iteration = 0;
     m_error = m_previous_error = -1;
   }
@@ -140,7 +154,8 @@ private:
   bool m_quiet;
   bool m_tty = isatty(2) != 0;
   bool m_printed = false, m_stop = false;
-  std::string m_stage;
+  std::string m_stage, m_top;
+  double m_top_tolerance = 0;
   std::chrono::steady_clock::time_point m_start = std::chrono::steady_clock::now();
   double m_tolerance = 0, m_error = -1, m_previous_error = -1;
   std::size_t m_iteration = 0;

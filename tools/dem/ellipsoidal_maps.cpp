@@ -26,9 +26,11 @@ Run run_ellipsoidal_conformal(Problem& pb, const Options& opt)
   const Stopwatch watch;
   if(opt.radii)
     run.report = DEM::ellipsoidal_conformal_map(
-        pb.mesh, out, NP::combine(NP::ellipsoid_radii(*opt.radii), NP::optimize_radii(opt.optimize_radii)));
+        pb.mesh, out, NP::combine(NP::ellipsoid_radii(*opt.radii), NP::optimize_radii(opt.optimize_radii),
+                                NP::stage_callback(stage_callback())));
   else
-    run.report = DEM::ellipsoidal_conformal_map(pb.mesh, out, NP::optimize_radii(opt.optimize_radii));
+    run.report = DEM::ellipsoidal_conformal_map(
+        pb.mesh, out, NP::combine(NP::optimize_radii(opt.optimize_radii), NP::stage_callback(stage_callback())));
   watch.stop(run.seconds, run.cpu_seconds);
   run.Y = to_matrix(pb.mesh, out);
   return run;
@@ -66,7 +68,8 @@ Run run_ellipsoidal_quasiconformal(Problem& pb, const Options& opt)
   const Stopwatch watch;
   run.report = DEM::ellipsoidal_quasiconformal_map(
       pb.mesh, pb.landmarks, out,
-      NP::combine(NP::ellipsoid_radii(radii), NP::landmark_weight(opt.lambda.value_or(1.))));
+      NP::combine(NP::ellipsoid_radii(radii), NP::landmark_weight(opt.lambda.value_or(1.)),
+                  NP::stage_callback(stage_callback())));
   watch.stop(run.seconds, run.cpu_seconds);
   run.Y = to_matrix(pb.mesh, out);
   return run;
@@ -83,11 +86,12 @@ Run run_edem(Problem& pb, const Options& opt, bool quasiconformal)
   const std::array<double, 3> radii = *opt.radii;
   const Stopwatch watch;
   const DEM::Map_report start = DEM::ellipsoidal_density_equalizing_initial_map(
-      pb.mesh, init, NP::combine(NP::ellipsoid_radii(radii), NP::face_population_map(pb.population_map)));
+      pb.mesh, init, NP::combine(NP::ellipsoid_radii(radii), NP::face_population_map(pb.population_map),
+                                 NP::stage_callback(stage_callback())));
   if(!opt.quiet) std::cerr << "dem: " << start.message << std::endl;
   const auto common = NP::combine(NP::ellipsoid_radii(radii), NP::initial_map(init),
                                   NP::face_population_map(pb.population_map),
-                                  NP::progress_callback(progress.callback()),
+                                  NP::progress_callback(progress.callback()), NP::stage_callback(stage_callback()),
                                   NP::time_step(opt.time_step.value_or(method_defaults(opt.method).time_step)));
   if(!quasiconformal)
     run.report = DEM::ellipsoidal_density_equalizing_map(

@@ -18,6 +18,7 @@
 #include <CGAL/Density_equalizing_maps/Map_report.h> // Invalid_input
 
 #include <stdlib.h> // mkstemps
+#include <sys/stat.h> // fchmod, umask
 #include <unistd.h> // close
 
 #include <algorithm>
@@ -80,6 +81,11 @@ inline std::string make_temporary_beside(const std::string& path, std::string& e
   buffer.push_back('\0');
   const int fd = mkstemps(buffer.data(), int(ext.size()));
   if(fd < 0) { error = std::strerror(errno); return ""; }
+  // mkstemps creates the file readable by its owner only; the output must get
+  // the permissions any other new file gets (0666 less the umask).
+  const mode_t mask = ::umask(0);
+  ::umask(mask);
+  ::fchmod(fd, 0666 & ~mask);
   ::close(fd);
   return std::string(buffer.data());
 }

@@ -67,6 +67,13 @@ Stage_progress* stage_progress_ = nullptr;
 void set_stage_progress(Stage_progress* s) { stage_progress_ = s; }
 Stage_progress* stage_progress() { return stage_progress_; }
 
+std::function<void(const std::string&)> stage_callback()
+{
+  return [](const std::string& name) {
+    if(stage_progress_) stage_progress_->substage(name);
+  };
+}
+
 bool Progress::operator()(std::size_t iteration, double error)
 {
   if(quiet_) return true;

@@ -70,6 +70,10 @@ struct Run
 void set_stage_progress(Stage_progress* s);
 Stage_progress* stage_progress();
 
+/// The library's stage names (named parameter `stage_callback`), shown by the
+/// stage reporter as parts of the running stage.
+std::function<void(const std::string&)> stage_callback();
+
 /// Prints iterations on stderr once a run has lasted more than a second
 /// (through the stage reporter when one is set).
 class Progress

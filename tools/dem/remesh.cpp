@@ -12,6 +12,7 @@
 #include "commands.h"
 #include "maps.h"
 #include "metrics.h"
+#include "output_files.h"
 
 #include <CGAL/Density_equalizing_maps/remeshing.h>
 
@@ -86,10 +87,29 @@ DI::Index_matrix face_matrix(const Mesh& m)
   return F;
 }
 
+const char* remesh_usage()
+{
+  return "usage: dem remesh INPUT --via METHOD --vertices N [METHOD's options] --output FILE --metrics FILE\n"
+         "  map INPUT with METHOD (as `dem METHOD` does), triangulate its domain uniformly with about N\n"
+         "  vertices and pull that triangulation back onto INPUT: a remeshed surface of the same genus,\n"
+         "  every vertex on INPUT, triangles uniform in size where the map preserves area\n"
+         "  --via METHOD     any map method: spherical-conformal, sdem, lsdem (genus 0, sphere);\n"
+         "                   ellipsoidal-conformal, ellipsoidal-quasiconformal, edem, edeq (genus 0, ellipsoid);\n"
+         "                   toroidal-parameterization, tdem (genus 1, torus; needs --torus R r)\n"
+         "  --vertices N     vertex count of the domain mesh (N >= 12; within 1 % for N >= 100)\n"
+         "  --population FILE  with sdem/lsdem/edem/edeq/tdem: denser triangles where the population is higher\n"
+         "  the METHOD's own options (dem METHOD --help), --output FILE (the remeshed surface, any mesh\n"
+         "  format of --output), --metrics FILE (the map's keys plus delta_size, delta_shape,\n"
+         "  remesh_vertices, remesh_faces, remesh_seconds), --quiet\n"
+         "examples:\n"
+         "  dem remesh bunny.off --via sdem --vertices 8500 --output bunny_uniform.off --metrics m.json\n"
+         "  dem remesh ring.off --via toroidal-parameterization --torus 3 1 --vertices 4000 --output ring_grid.ply\n";
+}
+
 int remesh_command(const std::vector<std::string>& args)
 {
   for(const std::string& a : args)
-    if(a == "--help" || a == "-h") { std::cout << usage_text(); return 0; }
+    if(a == "--help" || a == "-h") { std::cout << remesh_usage(); return 0; }
   Options opt;
   std::size_t vertices = 0;
   {
@@ -106,26 +126,42 @@ int remesh_command(const std::vector<std::string>& args)
               << vertices << ")\n";
     return 3;
   }
+  // the outputs are checked before the work (a mistyped folder costs nothing)
+  const std::vector<std::string> inputs = {opt.input, opt.landmarks, opt.cut_edges, opt.population, opt.vertex_population};
+  for(const Output_problem& p : {output_path_problem("--output", opt.output, true, inputs),
+                                 output_path_problem("--metrics", opt.metrics, false, inputs)})
+    if(p) {
+      std::cerr << "dem: " << p.message << "\n";
+      return p.status;
+    }
+  Stage_progress stages(opt.quiet);
+  set_stage_progress(&stages);
+  struct Unset { ~Unset() { set_stage_progress(nullptr); } } unset;
   Problem pb;
   Run run;
   Mesh remeshed;
   DEM::Remeshing_report remesh;
   double remesh_seconds = 0, remesh_cpu = 0;
   try {
+    stages.begin("reading and validating " + opt.input);
     read_mesh(opt, pb);
     read_sidecars(opt, pb);
+    stages.begin(std::string("mapping (") + method_name(opt.method) + ")",
+                 opt.tolerance.value_or(method_defaults(opt.method).tolerance));
     run = run_map(pb, opt);
     for(const std::string& n : run.notes) std::cerr << "dem: " << n << "\n";
     if(run.report.fold_overs == 0 && run.report.termination != DEM::Termination::STALLED) {
       Point_map mapped = fresh_point_map(pb.mesh, "v:dem_remesh_map");
       for(Vertex v : pb.mesh.vertices())
         put(mapped, v, Point_3(run.Y(v.idx(), 0), run.Y(v.idx(), 1), run.Y(v.idx(), 2)));
+      stages.begin("remeshing (uniform domain mesh pulled back through the map)");
       const Stopwatch watch;
       remesh = remesh_on_domain(opt, run, [&](const auto& domain) {
         return DEM::remesh_through_map(pb.mesh, mapped, domain, vertices, remeshed);
       });
       watch.stop(remesh_seconds, remesh_cpu);
     }
+    stages.end();
   } catch(const DEM::Invalid_input& e) {
     std::cerr << "dem: invalid input: " << e.what() << "\n";
     return 3;
@@ -161,6 +197,7 @@ int remesh_command(const std::vector<std::string>& args)
               << (opt.output.empty() ? "" : ", nothing written to " + opt.output) << "\n";
     return 4;
   }
+  if(!opt.output.empty()) stages.begin("writing " + opt.output);
   if(!opt.output.empty() && !write_output(opt.output, to_matrix(remeshed, remeshed.points()), face_matrix(remeshed))) {
     std::cerr << "dem: cannot write " << opt.output << "\n";
     return 3;

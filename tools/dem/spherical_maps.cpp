@@ -20,7 +20,8 @@ Run run_spherical_conformal(Problem& pb, const Options& opt)
   Run run;
   Point_map out = fresh_point_map(pb.mesh, "v:dem_sphere");
   const Stopwatch watch;
-  run.report = DEM::spherical_conformal_map(pb.mesh, out, NP::mobius_area_correction(opt.mobius));
+  run.report = DEM::spherical_conformal_map(
+      pb.mesh, out, NP::combine(NP::mobius_area_correction(opt.mobius), NP::stage_callback(stage_callback())));
   watch.stop(run.seconds, run.cpu_seconds);
   run.Y = to_matrix(pb.mesh, out);
   return run;
@@ -36,8 +37,9 @@ Run run_sdem(Problem& pb, const Options& opt, bool landmark_aligned)
   Point_map out = fresh_point_map(pb.mesh, "v:dem_sdem");
   Progress progress(opt.quiet);
   const Stopwatch watch;
-  DEM::spherical_conformal_map(pb.mesh, init, NP::mobius_area_correction(true));
-  const auto common = NP::combine(NP::initial_map(init), NP::progress_callback(progress.callback()),
+  DEM::spherical_conformal_map(pb.mesh, init,
+                               NP::combine(NP::mobius_area_correction(true), NP::stage_callback(stage_callback())));
+  const auto common = NP::combine(NP::initial_map(init), NP::progress_callback(progress.callback()), NP::stage_callback(stage_callback()),
                                   NP::face_population_map(pb.population_map));
   if(!landmark_aligned) {
     run.report = DEM::spherical_density_equalizing_map(

@@ -206,6 +206,12 @@ std::array<double, 3> bounding_box_ellipsoid_radii(const TriangleMesh& tm,
 ///     \cgalParamDefault{in the centred principal frame matched to the radii: the vertices of largest and
 ///                       smallest coordinate along the ellipsoid's z axis and of largest coordinate along its x axis}
 ///   \cgalParamNEnd
+///   \cgalParamNBegin{stage_callback}
+///     \cgalParamDescription{a callable `void(const std::string& stage)` called as each stage starts (validation,
+///       harmonic map, south-chart LBS correction, Moebius area correction, the iterations, ...), so that a
+///       progress display can name a long direct stage}
+///     \cgalParamDefault{none}
+///   \cgalParamNEnd
 ///   \cgalParamNBegin{sparse_linear_solver}
 ///     \cgalParamDescription{a model of `SparseLinearAlgebraWithFactorTraits_d` for the SPD systems}
 ///     \cgalParamDefault{`Default_sparse_solver_traits`}
@@ -239,13 +245,16 @@ Map_report ellipsoidal_conformal_map(const TriangleMesh& tm, VertexPointOutMap e
   const auto solver = internal::solver_from_parameters(np);
 
   const bool dilate = choose_parameter(get_parameter(np, internal_np::mobius_area_correction), true);
+  const internal::Stage_notifier stage = internal::stage_notifier_from_parameters(np);
 
+  internal::begin_stage(stage, "spherical conformal map and ellipsoidal charts");
   const internal::Ellipsoidal_mapper mapper(a.X, a.F, poles, *solver);
   Map_report report;
   report.used_tutte_fallback = mapper.chart().tutte;
   report.add_fallback(mapper.chart().fallback);
   report.repairs = mapper.chart().repairs;
   internal::Matrix f;
+  internal::begin_stage(stage, optimize ? "radii optimization" : "ellipsoidal conformal map");
   if(optimize) {
     internal::Radii_optimization opt = internal::optimize_ellipsoid_radii(mapper, radii, dilate);
     radii = opt.best.radii;
@@ -261,6 +270,7 @@ Map_report ellipsoidal_conformal_map(const TriangleMesh& tm, VertexPointOutMap e
   } else {
     f = internal::evaluate_ellipsoidal_conformal(mapper, radii, internal::face_areas(a.X, a.F), dilate).f;
   }
+  internal::begin_stage(stage, "fold check and repair");
   internal::repair_folded_ellipsoidal_map(mapper.flash(), a.F, radii, *solver, f, report);
   report.radii = {radii[0], radii[1], radii[2]};
   report.fold_overs = internal::count_inverted_faces_about_center(f, a.F);
@@ -395,7 +405,9 @@ Map_report ellipsoidal_quasiconformal_map(const TriangleMesh& tm, const Landmark
 
   const auto solver = internal::solver_from_parameters(np);
   const bool dilate = choose_parameter(get_parameter(np, internal_np::mobius_area_correction), true);
-  const internal::Flash_result flash = internal::flash_spherical_map(a.X, a.F, *solver);
+  const internal::Stage_notifier stage = internal::stage_notifier_from_parameters(np);
+  const internal::Flash_result flash = internal::flash_spherical_map(a.X, a.F, *solver, stage);
+  internal::begin_stage(stage, "ellipsoidal charts and landmark-matching quasi-conformal map");
   if(!poles_given) { // orient the conformal map like the targets before pulling the landmarks
     const internal::Ellipsoidal_mapper first(a.X, a.F, poles, *solver, flash);
     const internal::Matrix f0 =
@@ -413,6 +425,7 @@ Map_report ellipsoidal_quasiconformal_map(const TriangleMesh& tm, const Landmark
   report.used_tutte_fallback = mapper.chart().tutte;
   report.add_fallback(mapper.chart().fallback);
   report.repairs = mapper.chart().repairs;
+  internal::begin_stage(stage, "fold check and repair");
   internal::repair_folded_ellipsoidal_map(mapper.flash(), a.F, radii, *solver, res.f, report);
   report.radii = {radii[0], radii[1], radii[2]};
   report.iterations = res.passes;

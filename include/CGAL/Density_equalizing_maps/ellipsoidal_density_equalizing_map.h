@@ -124,6 +124,7 @@ Map_report ellipsoidal_density_equalization(const TriangleMesh& tm, VertexPointO
 
   std::string note;
   Map_report report;
+  begin_stage(options.stage, "initial map (spherical and ellipsoidal conformal maps)");
   Matrix x = initial_ellipsoidal_map(tm, a, radii, population, np, *solver, note, report);
   Ellipsoid_domain ellipsoid(a.F, x, radii, truncation, *solver);
   auto flow = make_flow(a.F, population, x, options, *diffusion_solver);
@@ -215,7 +216,7 @@ Map_report ellipsoidal_density_equalizing_initial_map(const TriangleMesh& tm, Ve
 ///       scaled by the radii if its density is closer to uniform (the report's message says which)}
 ///   \cgalParamNEnd
 ///   \cgalParamNBegin{face_population_map, vertex_density_map, time_step, truncation, progress_callback,
-///     vertex_point_map, vertex_index_map, sparse_linear_solver}
+///     stage_callback, vertex_point_map, vertex_index_map, sparse_linear_solver}
 ///     \cgalParamDescription{as for `spherical_density_equalizing_map()`}
 ///   \cgalParamNEnd
 ///   \cgalParamNBegin{stopping_tolerance}

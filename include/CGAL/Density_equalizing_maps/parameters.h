@@ -35,6 +35,7 @@ enum cut_edges_t              { cut_edges };
 enum flat_torus_coordinates_t { flat_torus_coordinates };
 enum flat_torus_offsets_t     { flat_torus_offsets };
 enum progress_callback_t      { progress_callback };
+enum stage_callback_t         { stage_callback };
 } // namespace internal_np
 
 namespace parameters {
@@ -65,6 +66,7 @@ CGAL_DEM_ADD_NAMED_PARAMETER(cut_edges_t,          cut_edges)
 CGAL_DEM_ADD_NAMED_PARAMETER(flat_torus_coordinates_t, flat_torus_coordinates)
 CGAL_DEM_ADD_NAMED_PARAMETER(flat_torus_offsets_t,     flat_torus_offsets)
 CGAL_DEM_ADD_NAMED_PARAMETER(progress_callback_t,  progress_callback)
+CGAL_DEM_ADD_NAMED_PARAMETER(stage_callback_t,     stage_callback)
 #undef CGAL_DEM_ADD_NAMED_PARAMETER
 
 namespace internal {

@@ -45,6 +45,12 @@ namespace Density_equalizing_maps {
 ///     \cgalParamType{bool}
 ///     \cgalParamDefault{`false`}
 ///   \cgalParamNEnd
+///   \cgalParamNBegin{stage_callback}
+///     \cgalParamDescription{a callable `void(const std::string& stage)` called as each stage starts (validation,
+///       harmonic map, south-chart LBS correction, Moebius area correction, the iterations, ...), so that a
+///       progress display can name a long direct stage}
+///     \cgalParamDefault{none}
+///   \cgalParamNEnd
 ///   \cgalParamNBegin{sparse_linear_solver}
 ///     \cgalParamDescription{a model of `SparseLinearAlgebraWithFactorTraits_d` for the SPD systems}
 ///     \cgalParamDefault{`Default_sparse_solver_traits`}
@@ -66,10 +72,14 @@ Map_report spherical_conformal_map(const TriangleMesh& tm, VertexPointOutMap sph
   using CGAL::parameters::get_parameter;
   const auto a = internal::closed_surface_arrays(tm, np, 2);
   const auto solver = internal::solver_from_parameters(np);
-  internal::Flash_result flash = internal::flash_spherical_map(a.X, a.F, *solver);
+  const internal::Stage_notifier stage = internal::stage_notifier_from_parameters(np);
+  internal::Flash_result flash = internal::flash_spherical_map(a.X, a.F, *solver, stage);
   internal::Matrix S = flash.S;
-  if(choose_parameter(get_parameter(np, internal_np::mobius_area_correction), false))
+  if(choose_parameter(get_parameter(np, internal_np::mobius_area_correction), false)) {
+    internal::begin_stage(stage, "Moebius area correction");
     S = internal::mobius_area_correction(a.X, a.F, S);
+  }
+  internal::begin_stage(stage, "exact fold-over count");
   Map_report report;
   report.used_tutte_fallback = flash.tutte;
   report.add_fallback(flash.fallback);
@@ -108,6 +118,7 @@ Map_report mobius_area_correction(const TriangleMesh& tm, VertexPointMap sphere_
   const std::size_t folds = internal::count_inverted_faces_about_center(S, a.F);
   if(folds > 0)
     throw Invalid_input("the spherical map is not bijective: " + std::to_string(folds) + " fold-overs (exact count)");
+  internal::begin_stage(internal::stage_notifier_from_parameters(np), "Moebius area correction");
   const internal::Matrix Q = internal::mobius_area_correction(a.X, a.F, S);
   Map_report report;
   report.fold_overs = internal::count_inverted_faces_about_center(Q, a.F);

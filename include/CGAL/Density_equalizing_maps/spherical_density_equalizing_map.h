@@ -36,10 +36,12 @@ Matrix initial_spherical_map(const Mesh_arrays<TriangleMesh>& a, const NamedPara
     if(folds > 0)
       throw Invalid_input("the initial map is not bijective: " + std::to_string(folds) + " fold-overs (exact count)");
   } else {
-    const Flash_result flash = flash_spherical_map(a.X, a.F, solver);
+    const Stage_notifier stage = stage_notifier_from_parameters(np);
+    const Flash_result flash = flash_spherical_map(a.X, a.F, solver, stage);
     report.used_tutte_fallback = flash.tutte;
     report.add_fallback(flash.fallback.empty() ? "" : "initial map: " + flash.fallback);
     report.repairs += flash.repairs;
+    begin_stage(stage, "Moebius area correction");
     S = mobius_area_correction(a.X, a.F, flash.S);
     const std::size_t folds = count_inverted_faces_about_center(S, a.F);
     if(folds > 0)
@@ -110,6 +112,12 @@ Matrix initial_spherical_map(const Mesh_arrays<TriangleMesh>& a, const NamedPara
 ///   \cgalParamNEnd
 ///   \cgalParamNBegin{vertex_point_map, vertex_index_map}
 ///     \cgalParamDescription{as for `spherical_conformal_map()`}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{stage_callback}
+///     \cgalParamDescription{a callable `void(const std::string& stage)` called as each stage starts (validation,
+///       harmonic map, south-chart LBS correction, Moebius area correction, the iterations, ...), so that a
+///       progress display can name a long direct stage}
+///     \cgalParamDefault{none}
 ///   \cgalParamNEnd
 ///   \cgalParamNBegin{sparse_linear_solver}
 ///     \cgalParamDescription{a model of `SparseLinearAlgebraWithFactorTraits_d` for the SPD systems}

@@ -149,6 +149,12 @@ inline void fill_toroidal_report(const Toroidal_run& run, const Torus_radii& t, 
 ///   \cgalParamNBegin{vertex_point_map, vertex_index_map}
 ///     \cgalParamDescription{as for `spherical_conformal_map()`}
 ///   \cgalParamNEnd
+///   \cgalParamNBegin{stage_callback}
+///     \cgalParamDescription{a callable `void(const std::string& stage)` called as each stage starts (validation,
+///       harmonic map, south-chart LBS correction, Moebius area correction, the iterations, ...), so that a
+///       progress display can name a long direct stage}
+///     \cgalParamDefault{none}
+///   \cgalParamNEnd
 ///   \cgalParamNBegin{sparse_linear_solver}
 ///     \cgalParamDescription{a model of `SparseLinearAlgebraWithFactorTraits_d` for the SPD systems}
 ///     \cgalParamDefault{`Default_sparse_solver_traits` for the harmonic map, Eigen's simplicial
@@ -182,6 +188,7 @@ Map_report toroidal_density_equalizing_map(const TriangleMesh& tm, VertexPointOu
   const internal::Vector population = internal::population_from_parameters(a, np);
   const internal::Engine_options options = internal::engine_options_from_parameters(np, 0.1, 1e-2, 1000);
   internal::Matrix u;
+  internal::begin_stage(options.stage, "flat-torus layout of the input");
   const internal::Offset_matrix o = internal::offsets_from_torus_positions(a.input_positions(), a.F, t, u);
   std::string why;
   const int orientation = internal::layout_orientation(u, a.F, o, t, why);
@@ -265,6 +272,7 @@ Map_report toroidal_parameterization(const TriangleMesh& tm, VertexPointOutMap t
     cocycles = internal::tree_cotree_cocycles(a.F, halfedges, n, 0);
   }
   const auto solver = internal::solver_from_parameters(np);
+  internal::begin_stage(options.stage, "periodic harmonic map onto the flat torus");
   internal::Flat_torus_parameterization initial;
   if(!internal::flat_torus_harmonic_map(a.X, a.F, cocycles, base, t, population, *solver, initial))
     throw Algorithm_failure("the initial periodic harmonic map onto the flat torus could not be computed "

@@ -29,6 +29,7 @@
 #include <CGAL/Density_equalizing_maps/Map_report.h>
 #include <CGAL/Density_equalizing_maps/internal/measures.h>
 #include <CGAL/Density_equalizing_maps/internal/sparse_solver.h>
+#include <CGAL/Density_equalizing_maps/internal/stages.h>
 
 #include <functional>
 #include <sstream>
@@ -53,6 +54,7 @@ struct Engine_options
   /// diffused one (the reference code of papers 000/001)
   bool stop_on_recoupled_density = false;
   std::function<bool(std::size_t, double)> progress;
+  Stage_notifier stage;
 };
 
 struct Engine_result
@@ -180,6 +182,7 @@ Engine_result run_density_equalization(Domain& domain, Flow& flow, Matrix& x, co
 
   const double dt = opt.time_step;
   Matrix x_new;
+  begin_stage(opt.stage, "density-equalizing iterations");
   while(true) {
     if(res.iterations >= opt.max_iterations) { res.termination = Termination::MAXIMUM_ITERATIONS; break; }
     const Matrix x_previous = x;

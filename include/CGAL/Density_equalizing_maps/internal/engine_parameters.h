@@ -37,6 +37,7 @@ Engine_options engine_options_from_parameters(const NamedParameters& np, double 
     auto cb = get_parameter(np, internal_np::progress_callback);
     o.progress = [cb](std::size_t it, double err) { return static_cast<bool>(cb(it, err)); };
   }
+  o.stage = stage_notifier_from_parameters(np);
   return o;
 }
 

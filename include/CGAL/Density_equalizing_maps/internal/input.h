@@ -12,6 +12,7 @@
 #include <CGAL/Density_equalizing_maps/internal/measures.h>
 #include <CGAL/Density_equalizing_maps/internal/mesh_arrays.h>
 #include <CGAL/Density_equalizing_maps/internal/sparse_solver.h>
+#include <CGAL/Density_equalizing_maps/internal/stages.h>
 #include <CGAL/Density_equalizing_maps/internal/validation.h>
 
 #include <CGAL/boost/graph/named_params_helper.h>
@@ -26,6 +27,7 @@ Mesh_arrays<TriangleMesh> closed_surface_arrays(const TriangleMesh& tm, const Na
 {
   using CGAL::parameters::choose_parameter;
   using CGAL::parameters::get_parameter;
+  begin_stage(stage_notifier_from_parameters(np), "validation");
   auto vpm = choose_parameter(get_parameter(np, internal_np::vertex_point), get_const_property_map(vertex_point, tm));
   auto vim = CGAL::get_initialized_vertex_index_map(tm, np);
   Mesh_arrays<TriangleMesh> a = to_arrays(tm, vpm, vim);

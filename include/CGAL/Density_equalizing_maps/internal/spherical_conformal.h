@@ -12,6 +12,7 @@
 #include <CGAL/Density_equalizing_maps/internal/ellipsoid_domain.h>
 #include <CGAL/Density_equalizing_maps/internal/fold_overs.h>
 #include <CGAL/Density_equalizing_maps/internal/projections.h>
+#include <CGAL/Density_equalizing_maps/internal/stages.h>
 
 #include <algorithm>
 #include <numeric>
@@ -60,7 +61,8 @@ inline double mean_side(const Complex a, const Complex b, const Complex c)
 
 /// FLASH: north-pole harmonic step, balancing, south-pole LBS correction.
 /// Falls back to a Tutte embedding when the cotangent harmonic map fails.
-inline Flash_result flash_spherical_map(const Matrix& X, const Index_matrix& F, const Spd_solver& prototype)
+inline Flash_result flash_spherical_map(const Matrix& X, const Index_matrix& F, const Spd_solver& prototype,
+                                        const Stage_notifier& stage = Stage_notifier())
 {
   const Eigen::Index n = X.rows();
   Flash_result res;
@@ -75,6 +77,7 @@ inline Flash_result flash_spherical_map(const Matrix& X, const Index_matrix& F, 
   const Face_block_assembler assembler(F, n);
   std::unique_ptr<Spd_solver> solver = prototype.clone();
   Complex_vector z;
+  begin_stage(stage, "harmonic map (cotangent Laplacian, sparse Cholesky)");
   // the m x 9 blocks die before the factorization, the memory peak
   Sparse_matrix L = assembler.assemble(cotangent_stiffness_blocks(X, F));
   bool ok = punctured_harmonic_map(std::move(L), F, t, cot_corners, *solver, z);
@@ -97,6 +100,7 @@ inline Flash_result flash_spherical_map(const Matrix& X, const Index_matrix& F, 
     return S.allFinite();
   };
   if(!ok || !balance_and_lift(z)) {
+    begin_stage(stage, "Tutte embedding (the harmonic map failed)");
     res.tutte = true;
     res.fallback = "tutte embedding (the cotangent harmonic map could not be computed)";
     const Complex tutte_corners[3] = {Complex(1, 0), std::polar(1., 2 * M_PI / 3), std::polar(1., 4 * M_PI / 3)};
@@ -107,6 +111,7 @@ inline Flash_result flash_spherical_map(const Matrix& X, const Index_matrix& F, 
                               "non-finite result)");
   }
 
+  begin_stage(stage, "south-chart LBS correction");
   // South step: quasi-conformal correction in the south chart, where the
   // north step's distortion (near the puncture) sits at the centre.
   std::vector<Eigen::Index> order(static_cast<std::size_t>(n));
@@ -144,6 +149,7 @@ inline Flash_result flash_spherical_map(const Matrix& X, const Index_matrix& F, 
   // conformal map are kept wherever they are admissible, flipped faces get
   // truncated ones, and the step is shortened if the repair cannot succeed.
   if(count_inverted_faces_about_center(res.S, F) > 0) {
+    begin_stage(stage, "fold repair from the Tutte embedding (the harmonic map folded)");
     const Complex tutte_corners[3] = {Complex(1, 0), std::polar(1., 2 * M_PI / 3), std::polar(1., 4 * M_PI / 3)};
     std::unique_ptr<Spd_solver> s4 = prototype.clone();
     Complex_vector zt;
