@@ -11,67 +11,31 @@
 // is mapped onto that ellipsoid; an input is mapped onto its bounding-box
 // ellipsoid (the default radii).
 
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Surface_mesh.h>
-#include <CGAL/boost/graph/generators.h>
-#include <CGAL/boost/graph/IO/polygon_mesh_io.h>
-#include <CGAL/Polygon_mesh_processing/bbox.h>
-#include <CGAL/Polygon_mesh_processing/measure.h>
-#include <CGAL/Subdivision_method_3/subdivision_methods_3.h>
+#include "example_meshes.h"
 
 #include <CGAL/Density_equalizing_maps/ellipsoidal_density_equalizing_map.h>
 #include <CGAL/Density_equalizing_maps/measures.h>
 
-#include <algorithm>
 #include <array>
-#include <cmath>
 #include <cstdlib>
 #include <iostream>
 #include <string>
 
-typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
-typedef K::Point_3                                          Point_3;
-typedef CGAL::Surface_mesh<Point_3>                         Mesh;
-typedef Mesh::Vertex_index                                  vertex_descriptor;
-typedef Mesh::Face_index                                    face_descriptor;
-
 namespace DEM = CGAL::Density_equalizing_maps;
-namespace PMP = CGAL::Polygon_mesh_processing;
+using namespace example;
 
 int main(int argc, char** argv)
 {
   Mesh mesh;
   const std::array<double, 3> radii = {1., 1., 1.5};
-  if(argc > 1) {
-    if(!CGAL::IO::read_polygon_mesh(argv[1], mesh) || !CGAL::is_triangle_mesh(mesh)) {
-      std::cerr << "cannot read a triangle mesh from " << argv[1] << std::endl;
-      return EXIT_FAILURE;
-    }
-  } else {
-    CGAL::make_icosahedron(mesh, Point_3(0, 0, 0), 1.0);
-    CGAL::Subdivision_method_3::Loop_subdivision(mesh, CGAL::parameters::number_of_iterations(3));
-    for(vertex_descriptor v : vertices(mesh)) { // onto the ellipsoid
-      const Point_3& p = mesh.point(v);
-      const double r = std::sqrt((p - CGAL::ORIGIN).squared_length());
-      mesh.point(v) = Point_3(radii[0] * p.x() / r, radii[1] * p.y() / r, radii[2] * p.z() / r);
-    }
-  }
+  auto onto_ellipsoid = [&](const Point_3& p) { return Point_3(radii[0] * p.x(), radii[1] * p.y(), radii[2] * p.z()); };
+  if(!input_mesh(argc, argv, mesh, icosphere(3, onto_ellipsoid))) return EXIT_FAILURE;
   const std::string output = argc > 2 ? argv[2] : "ellipsoidal_density_equalizing_map.off";
 
   // population = area x density, the density a smooth step from 1 to 10 along z
-  const CGAL::Bbox_3 box = PMP::bbox(mesh);
-  Mesh::Property_map<face_descriptor, double> population =
-    mesh.add_property_map<face_descriptor, double>("f:population", 0.).first;
-  for(face_descriptor f : faces(mesh)) {
-    const auto h = halfedge(f, mesh);
-    const Point_3 c = CGAL::centroid(mesh.point(source(h, mesh)), mesh.point(target(h, mesh)),
-                                     mesh.point(target(next(h, mesh), mesh)));
-    const double t = std::clamp((c.z() - box.zmin()) / (box.zmax() - box.zmin()) * 2 - 0.5, 0., 1.);
-    put(population, f, PMP::face_area(f, mesh) * (1 + 9 * t * t * (3 - 2 * t)));
-  }
+  const Face_map population = smooth_step_population(mesh, 10.);
 
-  Mesh::Property_map<vertex_descriptor, Point_3> ellipsoid_point =
-    mesh.add_property_map<vertex_descriptor, Point_3>("v:ellipsoid_point").first;
+  Point_map ellipsoid_point = image_map(mesh, "ellipsoid_point");
 
   DEM::Map_report report;
   try {
@@ -101,12 +65,6 @@ int main(int argc, char** argv)
             << "fold-overs (exact count): " << report.fold_overs << "\n"
             << (report.message.empty() ? "" : "note: " + report.message + "\n");
 
-  Mesh out = mesh;
-  for(vertex_descriptor v : vertices(out)) out.point(v) = get(ellipsoid_point, v);
-  if(!CGAL::IO::write_polygon_mesh(output, out, CGAL::parameters::stream_precision(17))) {
-    std::cerr << "cannot write " << output << std::endl;
-    return EXIT_FAILURE;
-  }
-  std::cout << "wrote " << output << std::endl;
+  if(!write_mapped_mesh(mesh, ellipsoid_point, output)) return EXIT_FAILURE;
   return report.is_bijective() ? EXIT_SUCCESS : EXIT_FAILURE;
 }

@@ -1,14 +1,18 @@
+// Copyright (c) 2026 Density_equalizing_maps contributors.
+// This file is part of Density_equalizing_maps, a third-party CGAL package.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Landmark-aligned quasi-conformal map onto an ellipsoid (FEQCM): a few
 // vertices are pulled toward prescribed points on the ellipsoid; a larger
 // landmark weight lambda matches them better at the price of more distortion.
-// Usage: ellipsoidal_quasiconformal_map_example [mesh.off]
-#include <CGAL/Simple_cartesian.h>
-#include <CGAL/Surface_mesh.h>
-#include <CGAL/boost/graph/IO/polygon_mesh_io.h>
-#include <CGAL/boost/graph/generators.h>
+//   ellipsoidal_quasiconformal_map_example [input.off]
+// Without an input, a subdivided icosahedron (an icosphere) is used.
+
+#include "example_meshes.h"
 
 #include <CGAL/Density_equalizing_maps/ellipsoidal_conformal_map.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdlib>
@@ -16,26 +20,17 @@
 #include <utility>
 #include <vector>
 
-typedef CGAL::Simple_cartesian<double> K;
-typedef K::Point_3 Point_3;
-typedef CGAL::Surface_mesh<Point_3> Mesh;
-typedef boost::graph_traits<Mesh>::vertex_descriptor vertex_descriptor;
 namespace DEM = CGAL::Density_equalizing_maps;
+using namespace example;
 
 int main(int argc, char** argv)
 {
   Mesh mesh;
-  if(argc > 1) {
-    if(!CGAL::IO::read_polygon_mesh(argv[1], mesh)) {
-      std::cerr << "cannot read " << argv[1] << "\n";
-      return EXIT_FAILURE;
-    }
-  } else {
-    CGAL::make_icosahedron(mesh, Point_3(0, 0, 0), 1.);
-  }
+  if(!input_mesh(argc, argv, mesh, icosphere(3, [](const Point_3& p) { return p; }))) return EXIT_FAILURE;
 
   const std::array<double, 3> radii = {1., 1., 1.5};
-  auto ellipsoid = mesh.add_property_map<vertex_descriptor, Point_3>("v:ellipsoid").first;
+  Point_map ellipsoid = image_map(mesh, "ellipsoid");
+  bool bijective = true;
   try {
     // Where the conformal map puts the vertices...
     DEM::ellipsoidal_conformal_map(mesh, ellipsoid, DEM::parameters::ellipsoid_radii(radii));
@@ -59,10 +54,11 @@ int main(int argc, char** argv)
         DEM::parameters::combine(DEM::parameters::ellipsoid_radii(radii), DEM::parameters::landmark_weight(lambda)));
       std::cout << "lambda " << lambda << ": mean landmark error " << report.landmark_error << ", fold-overs "
                 << report.fold_overs << "\n";
+      bijective = bijective && report.is_bijective();
     }
   } catch(const DEM::Invalid_input& e) {
     std::cerr << "invalid input: " << e.what() << "\n";
     return EXIT_FAILURE;
   }
-  return EXIT_SUCCESS;
+  return bijective ? EXIT_SUCCESS : EXIT_FAILURE;
 }

@@ -8,13 +8,9 @@
 // six extreme vertices of the input along -x, +x, -y, +y, -z, +z are sent to
 // the points of the sphere on the coordinate axes, rotated by 20 degrees about z.
 //   landmark_aligned_spherical_density_equalizing_map_example [input.off [output.off]]
-// Without an input, a stretched subdivided icosahedron is used.
+// Without an input, a subdivided icosahedron stretched 1.8 times along z is used.
 
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Surface_mesh.h>
-#include <CGAL/boost/graph/generators.h>
-#include <CGAL/boost/graph/IO/polygon_mesh_io.h>
-#include <CGAL/Subdivision_method_3/subdivision_methods_3.h>
+#include "example_meshes.h"
 
 #include <CGAL/Density_equalizing_maps/measures.h>
 #include <CGAL/Density_equalizing_maps/spherical_density_equalizing_map.h>
@@ -26,29 +22,14 @@
 #include <utility>
 #include <vector>
 
-typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
-typedef K::Point_3                                          Point_3;
-typedef CGAL::Surface_mesh<Point_3>                         Mesh;
-typedef Mesh::Vertex_index                                  vertex_descriptor;
-
 namespace DEM = CGAL::Density_equalizing_maps;
+using namespace example;
 
 int main(int argc, char** argv)
 {
   Mesh mesh;
-  if(argc > 1) {
-    if(!CGAL::IO::read_polygon_mesh(argv[1], mesh) || !CGAL::is_triangle_mesh(mesh)) {
-      std::cerr << "cannot read a triangle mesh from " << argv[1] << std::endl;
-      return EXIT_FAILURE;
-    }
-  } else {
-    CGAL::make_icosahedron(mesh, Point_3(0, 0, 0), 1.0);
-    CGAL::Subdivision_method_3::Loop_subdivision(mesh, CGAL::parameters::number_of_iterations(3));
-    for(vertex_descriptor v : vertices(mesh)) {
-      const Point_3& p = mesh.point(v);
-      mesh.point(v) = Point_3(p.x(), p.y(), 1.8 * p.z());
-    }
-  }
+  if(!input_mesh(argc, argv, mesh, icosphere(3, [](const Point_3& p) { return Point_3(p.x(), p.y(), 1.8 * p.z()); })))
+    return EXIT_FAILURE;
   const std::string output = argc > 2 ? argv[2] : "landmark_aligned_spherical_density_equalizing_map.off";
 
   // landmarks: (vertex, target on the unit sphere) pairs
@@ -64,8 +45,7 @@ int main(int argc, char** argv)
       landmarks.emplace_back(best, Point_3(c * t[0] - s * t[1], s * t[0] + c * t[1], t[2]));
     }
 
-  Mesh::Property_map<vertex_descriptor, Point_3> sphere_point =
-    mesh.add_property_map<vertex_descriptor, Point_3>("v:sphere_point").first;
+  Point_map sphere_point = image_map(mesh, "sphere_point");
 
   DEM::Map_report report;
   try {
@@ -87,12 +67,6 @@ int main(int argc, char** argv)
             << "fold-overs (exact count): " << report.fold_overs << "\n"
             << (report.message.empty() ? "" : "note: " + report.message + "\n");
 
-  Mesh sphere = mesh;
-  for(vertex_descriptor v : vertices(sphere)) sphere.point(v) = get(sphere_point, v);
-  if(!CGAL::IO::write_polygon_mesh(output, sphere, CGAL::parameters::stream_precision(17))) {
-    std::cerr << "cannot write " << output << std::endl;
-    return EXIT_FAILURE;
-  }
-  std::cout << "wrote " << output << std::endl;
+  if(!write_mapped_mesh(mesh, sphere_point, output)) return EXIT_FAILURE;
   return report.is_bijective() ? EXIT_SUCCESS : EXIT_FAILURE;
 }

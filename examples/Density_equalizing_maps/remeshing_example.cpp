@@ -10,9 +10,7 @@
 //   remeshing_example [input.off [vertices [conformal.off density.off]]]
 // Without an input, a bumpy sphere is remeshed.
 
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Surface_mesh.h>
-#include <CGAL/boost/graph/IO/polygon_mesh_io.h>
+#include "example_meshes.h"
 
 #include <CGAL/Density_equalizing_maps/remeshing.h>
 #include <CGAL/Density_equalizing_maps/spherical_conformal_map.h>
@@ -23,32 +21,23 @@
 #include <iostream>
 #include <string>
 
-typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
-typedef K::Point_3 Point_3;
-typedef CGAL::Surface_mesh<Point_3> Mesh;
-typedef Mesh::Vertex_index vertex_descriptor;
-
 namespace DEM = CGAL::Density_equalizing_maps;
+using namespace example;
 
 int main(int argc, char** argv)
 {
+  // a sphere with a large bump: a conformal map shrinks the bump's image
+  auto bump = [](const Point_3& p) {
+    const double s = 1 + 0.8 * std::exp(-8 * ((p.x() - 1) * (p.x() - 1) + p.y() * p.y() + p.z() * p.z()));
+    return Point_3(s * p.x(), s * p.y(), s * p.z());
+  };
   Mesh mesh;
-  if(argc > 1) {
-    if(!CGAL::IO::read_polygon_mesh(argv[1], mesh)) { std::cerr << "cannot read " << argv[1] << "\n"; return EXIT_FAILURE; }
-  } else {
-    // a sphere with a large bump: a conformal map shrinks the bump's image
-    DEM::uniform_domain_mesh(DEM::Unit_sphere_domain(), 4000, mesh);
-    for(vertex_descriptor v : mesh.vertices()) {
-      const Point_3& p = mesh.point(v);
-      const double s = 1 + 0.8 * std::exp(-8 * ((p.x() - 1) * (p.x() - 1) + p.y() * p.y() + p.z() * p.z()));
-      mesh.point(v) = Point_3(s * p.x(), s * p.y(), s * p.z());
-    }
-  }
+  if(!input_mesh(argc, argv, mesh, icosphere(5, bump))) return EXIT_FAILURE;
   const std::size_t vertices = argc > 2 ? std::size_t(std::atol(argv[2])) : 2000;
 
   // two maps onto the unit sphere
-  auto conformal = mesh.add_property_map<vertex_descriptor, Point_3>("v:conformal").first;
-  auto equalized = mesh.add_property_map<vertex_descriptor, Point_3>("v:sdem").first;
+  Point_map conformal = image_map(mesh, "conformal");
+  Point_map equalized = image_map(mesh, "sdem");
   DEM::spherical_conformal_map(mesh, conformal);
   DEM::spherical_density_equalizing_map(mesh, equalized); // default population: face areas
 

@@ -11,9 +11,7 @@
 // population twice as dense in a disk around one point as elsewhere (the
 // "ball on a torus" of Yao and Choi, Fig. 10).
 
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Surface_mesh.h>
-#include <CGAL/boost/graph/IO/polygon_mesh_io.h>
+#include "example_meshes.h"
 
 #include <CGAL/Density_equalizing_maps/toroidal_density_equalizing_map.h>
 
@@ -23,37 +21,10 @@
 #include <fstream>
 #include <iostream>
 #include <string>
-#include <vector>
-
-typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
-typedef K::Point_3 Point_3;
-typedef K::Point_2 Point_2;
-typedef CGAL::Surface_mesh<Point_3> Mesh;
-typedef Mesh::Vertex_index vertex_descriptor;
-typedef Mesh::Face_index face_descriptor;
 
 namespace DEM = CGAL::Density_equalizing_maps;
 namespace params = DEM::parameters;
-
-// A regular (nu x nv) triangulation of the torus, counter-clockwise seen from outside.
-static Mesh make_torus(double R, double r, int nu, int nv)
-{
-  Mesh m;
-  std::vector<vertex_descriptor> v;
-  for(int i = 0; i < nu; ++i)
-    for(int j = 0; j < nv; ++j) {
-      const double a = 2 * M_PI * i / nu, b = 2 * M_PI * j / nv;
-      v.push_back(m.add_vertex(Point_3((R + r * std::cos(b)) * std::cos(a), (R + r * std::cos(b)) * std::sin(a),
-                                       r * std::sin(b))));
-    }
-  auto id = [&](int i, int j) { return v[((i + nu) % nu) * nv + (j + nv) % nv]; };
-  for(int i = 0; i < nu; ++i)
-    for(int j = 0; j < nv; ++j) {
-      m.add_face(id(i, j), id(i + 1, j), id(i + 1, j + 1));
-      m.add_face(id(i, j), id(i + 1, j + 1), id(i, j + 1));
-    }
-  return m;
-}
+using namespace example;
 
 int main(int argc, char** argv)
 {
@@ -71,7 +42,7 @@ int main(int argc, char** argv)
       if(!(in >> population[f])) { std::cerr << "too few values in " << argv[2] << std::endl; return EXIT_FAILURE; }
     radii = {std::atof(argv[3]), std::atof(argv[4])};
   } else {
-    mesh = make_torus(radii[0], radii[1], 80, 40);
+    mesh = torus(radii[0], [&](double) { return radii[1]; }, 80, 40);
     population = mesh.add_property_map<face_descriptor, double>("f:population", 1.).first;
     // population 2 per unit area within distance 1.2 of the outer equator point (R + r, 0, 0), 1 elsewhere
     const Point_3 center(radii[0] + radii[1], 0, 0);
@@ -85,7 +56,7 @@ int main(int argc, char** argv)
   }
   const std::string output = argc > 5 ? argv[5] : "toroidal_density_equalizing_map.off";
 
-  auto torus_point = mesh.add_property_map<vertex_descriptor, Point_3>("v:torus_point").first;
+  Point_map torus_point = image_map(mesh, "torus_point");
   auto flat_point = mesh.add_property_map<vertex_descriptor, Point_2>("v:flat_torus_point").first;
 
   DEM::Map_report report;
@@ -104,12 +75,7 @@ int main(int argc, char** argv)
             << "), sd/mean of the density " << report.initial_error << " -> " << report.final_error
             << ", fold-overs " << report.fold_overs << std::endl;
 
-  Mesh mapped = mesh;
-  for(vertex_descriptor v : vertices(mapped)) mapped.point(v) = torus_point[v];
-  if(!CGAL::IO::write_polygon_mesh(output, mapped, CGAL::parameters::stream_precision(17))) {
-    std::cerr << "cannot write " << output << std::endl;
-    return EXIT_FAILURE;
-  }
+  if(!write_mapped_mesh(mesh, torus_point, output)) return EXIT_FAILURE;
   std::ofstream uv(output + ".uv.txt");
   uv.precision(17);
   for(vertex_descriptor v : vertices(mesh)) uv << flat_point[v].x() << " " << flat_point[v].y() << "\n";

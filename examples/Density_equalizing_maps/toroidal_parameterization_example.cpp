@@ -11,9 +11,7 @@
 // cut_edges.txt: one "i j" vertex pair per line (0-based, '#' comments). Without
 // arguments, a torus whose tube radius varies along its length is generated.
 
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Surface_mesh.h>
-#include <CGAL/boost/graph/IO/polygon_mesh_io.h>
+#include "example_meshes.h"
 
 #include <CGAL/Density_equalizing_maps/toroidal_density_equalizing_map.h>
 
@@ -27,46 +25,16 @@
 #include <utility>
 #include <vector>
 
-typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
-typedef K::Point_3 Point_3;
-typedef K::Point_2 Point_2;
-typedef CGAL::Surface_mesh<Point_3> Mesh;
-typedef Mesh::Vertex_index vertex_descriptor;
-typedef Mesh::Halfedge_index halfedge_descriptor;
-
 namespace DEM = CGAL::Density_equalizing_maps;
 namespace params = DEM::parameters;
-
-static Mesh make_wavy_torus(int nu, int nv)
-{
-  Mesh m;
-  std::vector<vertex_descriptor> v;
-  for(int i = 0; i < nu; ++i)
-    for(int j = 0; j < nv; ++j) {
-      const double a = 2 * M_PI * i / nu, b = 2 * M_PI * j / nv, r = 0.8 + 0.3 * std::cos(3 * a);
-      v.push_back(m.add_vertex(Point_3((2.5 + r * std::cos(b)) * std::cos(a), (2.5 + r * std::cos(b)) * std::sin(a),
-                                       r * std::sin(b))));
-    }
-  auto id = [&](int i, int j) { return v[((i + nu) % nu) * nv + (j + nv) % nv]; };
-  for(int i = 0; i < nu; ++i)
-    for(int j = 0; j < nv; ++j) {
-      m.add_face(id(i, j), id(i + 1, j), id(i + 1, j + 1));
-      m.add_face(id(i, j), id(i + 1, j + 1), id(i, j + 1));
-    }
-  return m;
-}
+using namespace example;
 
 int main(int argc, char** argv)
 {
+  // a torus whose tube radius varies along its length: not a surface of revolution
   Mesh mesh;
-  if(argc > 1) {
-    if(!CGAL::IO::read_polygon_mesh(argv[1], mesh) || !CGAL::is_triangle_mesh(mesh)) {
-      std::cerr << "cannot read a triangle mesh from " << argv[1] << std::endl;
-      return EXIT_FAILURE;
-    }
-  } else {
-    mesh = make_wavy_torus(96, 32);
-  }
+  if(!input_mesh(argc, argv, mesh, torus(2.5, [](double a) { return 0.8 + 0.3 * std::cos(3 * a); }, 96, 32)))
+    return EXIT_FAILURE;
   const std::array<double, 2> radii{argc > 3 ? std::atof(argv[2]) : 2., argc > 3 ? std::atof(argv[3]) : 1.};
   std::vector<std::pair<vertex_descriptor, vertex_descriptor> > cut;
   if(argc > 4) {
@@ -81,7 +49,7 @@ int main(int argc, char** argv)
   }
   const std::string output = argc > 5 ? argv[5] : "toroidal_parameterization.off";
 
-  auto torus_point = mesh.add_property_map<vertex_descriptor, Point_3>("v:torus_point").first;
+  Point_map torus_point = image_map(mesh, "torus_point");
   auto flat_point = mesh.add_property_map<vertex_descriptor, Point_2>("v:flat_torus_point").first;
   auto offset = mesh.add_property_map<halfedge_descriptor, std::array<int, 2> >("h:lattice_offset").first;
 
@@ -117,12 +85,7 @@ int main(int argc, char** argv)
             << DEM::to_string(report.termination) << "), mean |d_area| " << mean_abs_log << ", fold-overs "
             << report.fold_overs << std::endl;
 
-  Mesh mapped = mesh;
-  for(vertex_descriptor v : vertices(mapped)) mapped.point(v) = torus_point[v];
-  if(!CGAL::IO::write_polygon_mesh(output, mapped, CGAL::parameters::stream_precision(17))) {
-    std::cerr << "cannot write " << output << std::endl;
-    return EXIT_FAILURE;
-  }
+  if(!write_mapped_mesh(mesh, torus_point, output)) return EXIT_FAILURE;
   // flat-torus layout: per vertex (u, v); per face and corner the lattice offset
   // of the halfedge leaving it lets a viewer draw every face unbroken
   std::ofstream uv(output + ".uv.txt");
