@@ -175,21 +175,13 @@ public:
   ///   coordinates of `q` in that image
   /// \throws Invalid_input if `q` is not finite, or is the origin (sphere, ellipsoid) or on the
   ///   `z` axis (torus)
-  Face_location locate(const Point_3& q) const
-  {
-    const Eigen::Vector3d p = internal::to_eigen(q);
-    const internal::Surface_point s = m_surface.locate(p, m_surface.hint_after(m_last_query, m_last, p));
-    if(s.face < 0) throw Invalid_input("the query point has no direction on the domain (zero, on the axis or not finite)");
-    m_last = s;
-    m_last_query = p;
-    return to_face_location(s);
-  }
+  Face_location locate(const Point_3& q) const { return to_face_location(locate_internal(q)); }
 
   /// \brief The point of the input surface that the map sends to `q` (its preimage).
   /// \param q a point of the domain, as for `locate()`
   /// \returns the point at `locate(q)` on the input mesh
   /// \throws Invalid_input as `locate()`
-  Point_3 pull_back(const Point_3& q) const { return point_on_surface(locate(q)); }
+  Point_3 pull_back(const Point_3& q) const { return to_point(m_surface.surface_point(locate_internal(q))); }
 
   /// \brief Pulls back a range of domain points; consecutive queries that are close to each
   /// other (e.g. vertices of a mesh in breadth-first order) cost a few walk steps each.
@@ -235,6 +227,17 @@ private:
     auto vpm = choose_parameter(get_parameter(np, internal_np::vertex_point), get_const_property_map(vertex_point, tm));
     auto vim = CGAL::get_initialized_vertex_index_map(tm, np);
     return internal::to_arrays(tm, vpm, vim);
+  }
+
+  // locate() on index arrays: no face-descriptor conversion, no allocation
+  internal::Surface_point locate_internal(const Point_3& q) const
+  {
+    const Eigen::Vector3d p = internal::to_eigen(q);
+    const internal::Surface_point s = m_surface.locate(p, m_surface.hint_after(m_last_query, m_last, p));
+    if(s.face < 0) throw Invalid_input("the query point has no direction on the domain (zero, on the axis or not finite)");
+    m_last = s;
+    m_last_query = p;
+    return s;
   }
 
   static Point_3 to_point(const Eigen::Vector3d& p) { return Point_3(p.x(), p.y(), p.z()); }

@@ -67,8 +67,10 @@ inline void check_requested_vertices(std::size_t n)
 /// \brief Builds a near-uniform triangle mesh of a domain: the unit sphere, an
 /// ellipsoid or a torus.
 ///
-/// Sphere and ellipsoid: exactly `number_of_vertices` points of the spherical Fibonacci
-/// lattice, triangulated by their convex hull, mapped to the ellipsoid by
+/// Sphere and ellipsoid: the icosahedral geodesic sphere of frequency \f$ f \f$
+/// (\f$ 10 f^2 + 2 \f$ vertices; the next frequency when that is at most 1 % above
+/// `number_of_vertices`, else the largest below it, completed to exactly `number_of_vertices`
+/// by edge splits spread over the sphere), mapped to the ellipsoid by
 /// \f$ (x, y, z) \mapsto (a x, b y, c z) \f$ and relaxed on the surface as in DistMesh
 /// (edge springs, projection onto the surface, intrinsic Delaunay edge flips), keeping
 /// every face positively oriented about the origin. Torus: a triangular lattice of
@@ -119,8 +121,8 @@ void uniform_domain_mesh(const Domain& domain, std::size_t number_of_vertices, P
 /// \param tm the input mesh: closed, manifold, connected, genus 0 (sphere, ellipsoid) or 1 (torus)
 /// \param mapped the image of every vertex on `domain` (the output of one of the maps)
 /// \param domain the domain of the map, with its radii
-/// \param number_of_vertices the number of vertices of the result (exact on the sphere and the
-///        ellipsoid, within 1 % on the torus); at least 12
+/// \param number_of_vertices the number of vertices of the result (within 1 %, see
+///        `uniform_domain_mesh()`); at least 12
 /// \param out receives the remeshed surface (previous content removed); it must not be `tm`
 /// \param np optional named parameters: `vertex_point_map` and `vertex_index_map` of `tm`,
 ///        as for `Point_transfer`
