@@ -111,16 +111,27 @@ inline int orientation_about_center(const Eigen::Vector3d& a, const Eigen::Vecto
   return int(CGAL::orientation(o, P(a.x(), a.y(), a.z()), P(b.x(), b.y(), b.z()), P(c.x(), c.y(), c.z())));
 }
 
-/// True iff the minor arcs ab and cd cross at a point interior to both (exact
-/// signs; touching and collinear configurations count as no crossing).
+/// Whether the minor arcs ab and cd cross at a point interior to both (exact
+/// signs). `degenerate` is set when a sign is 0 (an end of one arc on the great
+/// circle of the other): the answer (false then) may be wrong, the caller routes
+/// around it.
+inline bool arcs_cross(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                       const Eigen::Vector3d& d, bool& degenerate)
+{
+  const int abc = orientation_about_center(a, b, c), abd = orientation_about_center(a, b, d);
+  if(abc == abd && abc != 0) return false; // c and d strictly on the same side
+  const int cda = orientation_about_center(c, d, a), cdb = orientation_about_center(c, d, b);
+  if(cda == cdb && cda != 0) return false;
+  if(abc == 0 || abd == 0 || cda == 0 || cdb == 0) { degenerate = true; return false; }
+  // opposite sides both ways: the great circles meet at +-p; the arcs share p iff
+  return abc == cdb; // S2 SimpleCrossing: (-abc) * (-cdb) > 0
+}
+
 inline bool arcs_cross(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
                        const Eigen::Vector3d& d)
 {
-  const int acb = -orientation_about_center(a, b, c);
-  if(acb == 0) return false;
-  if(orientation_about_center(a, b, d) != acb) return false;
-  if(-orientation_about_center(c, d, b) != acb) return false;
-  return orientation_about_center(c, d, a) == acb;
+  bool degenerate = false;
+  return arcs_cross(a, b, c, d, degenerate);
 }
 
 /// Signed area of the spherical triangle abc (Van Oosterom and Strackee), in (-2 pi, 2 pi].
@@ -237,11 +248,13 @@ public:
   }
 
   /// Parity of the crossings of the arc pq with the edges listed (indices).
-  bool crossing_parity(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const std::vector<int>& edges) const
+  /// `degenerate` is set if the arc passes exactly through a ring vertex or along an edge.
+  bool crossing_parity(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const std::vector<int>& edges,
+                       bool& degenerate) const
   {
     bool odd = false;
     for(int i : edges)
-      if(arcs_cross(p, q, m_v[std::size_t(i)], next_vertex(std::size_t(i)))) odd = !odd;
+      if(arcs_cross(p, q, m_v[std::size_t(i)], next_vertex(std::size_t(i)), degenerate)) odd = !odd;
     return odd;
   }
 
@@ -440,7 +453,9 @@ inline Face_region_overlaps face_region_overlaps(const Matrix& X, const Index_ma
               edges.insert(edges.end(), near[g][kn].begin(), near[g][kn].end());
               std::sort(edges.begin(), edges.end());
               edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
-              const bool flip = ring.crossing_parity(faces.centroid[f], faces.centroid[std::size_t(nbf)], edges);
+              bool degenerate = false;
+              const bool flip = ring.crossing_parity(faces.centroid[f], faces.centroid[std::size_t(nbf)], edges, degenerate);
+              if(degenerate) continue; // through a ring vertex: reach that face another way (or seed it)
               side[g][kn] = char(side[g][k] ^ (flip ? 1 : 0));
               queue.push_back(kn);
             }
@@ -467,7 +482,9 @@ inline Face_region_overlaps face_region_overlaps(const Matrix& X, const Index_ma
             const Eigen::Vector3d q = (bary[s][0] * a + bary[s][1] * b + bary[s][2] * c).normalized();
             bool in = true;
             for(std::size_t g = 0; g < rings.size() && in; ++g) {
-              const bool enclosed = (side[g][k] == 1) != rings[g].crossing_parity(faces.centroid[f], q, near[g][k]);
+              bool degenerate = false;
+              bool enclosed = (side[g][k] == 1) != rings[g].crossing_parity(faces.centroid[f], q, near[g][k], degenerate);
+              if(degenerate) enclosed = rings[g].encloses(q);
               in = (g == 0) ? enclosed : !enclosed;
             }
             if(!in) continue;
