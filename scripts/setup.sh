@@ -20,7 +20,8 @@ JOBS="${DEM_JOBS:-$(nproc 2>/dev/null || echo 2)}"
 # installed by scripts/build_docs.sh, which is the only command that needs them.
 PACKAGES=(libcgal-dev libeigen3-dev libboost-dev libgmp-dev libmpfr-dev
           libsuitesparse-dev libopenblas0-serial cmake g++ ccache
-          zlib1g-dev)  # zlib: GIfTI arrays in the GZipBase64Binary encoding
+          zlib1g-dev   # zlib: GIfTI arrays in the GZipBase64Binary encoding
+          nlohmann-json3-dev librsvg2-bin)  # dem cartogram: GeoJSON parsing, PNG pictures
 # Third-party readers of the test test_formats_third_party (skipped without
 # them): installed too when DEM_FORMAT_CHECKS=1 (CI sets it).
 if [[ "${DEM_FORMAT_CHECKS:-0}" == 1 ]]; then

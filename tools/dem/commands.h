@@ -28,6 +28,11 @@ struct Application
 /// `dem remesh ...` (remesh.cpp).
 extern const Application remesh_application;
 
+#ifdef DEM_HAVE_CARTOGRAM
+/// `dem cartogram ...` (cartogram_command.cpp; needs nlohmann-json).
+extern const Application cartogram_application;
+#endif
+
 /// The applications built into this `dem` (main.cpp).
 const std::vector<Application>& applications();
 

@@ -36,6 +36,12 @@ enum flat_torus_coordinates_t { flat_torus_coordinates };
 enum flat_torus_offsets_t     { flat_torus_offsets };
 enum progress_callback_t      { progress_callback };
 enum stage_callback_t         { stage_callback };
+enum sea_density_t            { sea_density };
+enum overlap_subdivision_t    { overlap_subdivision };
+enum relative_area_tolerance_t { relative_area_tolerance };
+enum number_of_passes_t       { number_of_passes };
+enum boundary_step_t          { boundary_step };
+enum pass_callback_t          { pass_callback };
 } // namespace internal_np
 
 namespace parameters {
@@ -67,6 +73,12 @@ CGAL_DEM_ADD_NAMED_PARAMETER(flat_torus_coordinates_t, flat_torus_coordinates)
 CGAL_DEM_ADD_NAMED_PARAMETER(flat_torus_offsets_t,     flat_torus_offsets)
 CGAL_DEM_ADD_NAMED_PARAMETER(progress_callback_t,  progress_callback)
 CGAL_DEM_ADD_NAMED_PARAMETER(stage_callback_t,     stage_callback)
+CGAL_DEM_ADD_NAMED_PARAMETER(sea_density_t,        sea_density)
+CGAL_DEM_ADD_NAMED_PARAMETER(overlap_subdivision_t, overlap_subdivision)
+CGAL_DEM_ADD_NAMED_PARAMETER(relative_area_tolerance_t, relative_area_tolerance)
+CGAL_DEM_ADD_NAMED_PARAMETER(number_of_passes_t,   number_of_passes)
+CGAL_DEM_ADD_NAMED_PARAMETER(boundary_step_t,      boundary_step)
+CGAL_DEM_ADD_NAMED_PARAMETER(pass_callback_t,      pass_callback)
 #undef CGAL_DEM_ADD_NAMED_PARAMETER
 
 namespace internal {

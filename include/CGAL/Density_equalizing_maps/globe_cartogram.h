@@ -1,0 +1,463 @@
+// Copyright (c) 2026 Density_equalizing_maps contributors.
+// This file is part of Density_equalizing_maps, a third-party CGAL package.
+// SPDX-License-Identifier: GPL-3.0-or-later
+
+#ifndef CGAL_DENSITY_EQUALIZING_MAPS_GLOBE_CARTOGRAM_H
+#define CGAL_DENSITY_EQUALIZING_MAPS_GLOBE_CARTOGRAM_H
+
+#include <CGAL/Density_equalizing_maps/Map_report.h>
+#include <CGAL/Density_equalizing_maps/parameters.h>
+#include <CGAL/Density_equalizing_maps/point_transfer.h>
+#include <CGAL/Density_equalizing_maps/spherical_density_equalizing_map.h>
+#include <CGAL/Density_equalizing_maps/internal/spherical_regions.h>
+
+#include <CGAL/boost/graph/named_params_helper.h>
+#include <boost/property_map/function_property_map.hpp>
+#include <boost/property_map/property_map.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <map>
+#include <numeric>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace CGAL {
+namespace Density_equalizing_maps {
+
+/// \ingroup PkgDensityEqualizingMapsCartogram
+/// The population of the faces of a globe mesh from regions and their values
+/// (`face_populations_from_regions()`). Faces are in the order of `faces(tm)`.
+struct Region_populations
+{
+  /// per face: the regions it meets, each with the fraction of the face's area it covers
+  std::vector<std::vector<std::pair<std::size_t, double> > > face_parts;
+  std::vector<double> face_area;       ///< area of each (flat) face
+  std::vector<double> face_population; ///< the population of each face
+  std::vector<double> region_area;     ///< area of each region on the mesh (sum of its parts)
+  double land_area = 0;                ///< sum of `region_area`
+  double sea_area = 0;                 ///< area of the parts of faces no region covers
+  double sea_density = 0;              ///< the population per unit area given to the sea
+  double mean_land_density = 0;        ///< total value / `land_area`
+  double overlapping_area = 0;         ///< area covered by more than one region (0 for a clean input)
+};
+
+/// \ingroup PkgDensityEqualizingMapsCartogram
+/// The result of `globe_cartogram()`, per region in the order of the input regions.
+struct Globe_cartogram_report
+{
+  std::vector<double> value_share;    ///< value / total value
+  std::vector<double> area_share;     ///< area / land area, on the deformed globe
+  std::vector<double> relative_error; ///< |area_share / value_share - 1|
+  std::vector<double> faces_covered;  ///< area of the region in faces (sum of its fractions of faces)
+  std::vector<std::size_t> too_small; ///< regions covering fewer than `minimum_faces` faces (not held to the tolerance)
+  double minimum_faces = 50;          ///< the size below which a region is too small for the mesh
+  double max_relative_error = 0;      ///< over the regions that are not too small
+  double mean_relative_error = 0;     ///< over the regions that are not too small
+  double sea_area_share = 0;          ///< sea area / globe area on the deformed globe
+  double sea_target_share = 0;        ///< the sea's share of the total population
+  std::size_t passes = 0;             ///< density-equalizing passes run
+  std::vector<double> max_error_after_pass; ///< `max_relative_error` after each pass
+  bool converged = false;             ///< every region not too small is within the tolerance
+  std::size_t fold_overs = 0;         ///< exact fold-over count of the final map (0)
+  Map_report last_pass;               ///< the report of the last pass
+  Region_populations populations;     ///< the populations of the input globe
+};
+
+namespace internal {
+
+template <class TriangleMesh, class NamedParameters>
+Mesh_arrays<TriangleMesh> globe_arrays(const TriangleMesh& tm, const NamedParameters& np)
+{
+  using CGAL::parameters::choose_parameter;
+  using CGAL::parameters::get_parameter;
+  auto vpm = choose_parameter(get_parameter(np, internal_np::vertex_point), get_const_property_map(vertex_point, tm));
+  auto vim = CGAL::get_initialized_vertex_index_map(tm, np);
+  Mesh_arrays<TriangleMesh> a = to_arrays(tm, vpm, vim);
+  for(Eigen::Index i = 0; i < a.X.rows(); ++i) {
+    const double r = a.X.row(i).norm();
+    if(!(std::abs(r - 1) < 1e-6))
+      throw Invalid_input("vertex " + std::to_string(i) + " of the globe mesh is not on the unit sphere (norm " +
+                          std::to_string(r) + ")");
+  }
+  return a;
+}
+
+inline std::vector<double> flat_face_areas(const Matrix& X, const Index_matrix& F)
+{
+  std::vector<double> A(std::size_t(F.rows()));
+  for(Eigen::Index f = 0; f < F.rows(); ++f) {
+    const Eigen::Vector3d a = X.row(F(f, 0)).transpose(), b = X.row(F(f, 1)).transpose(), c = X.row(F(f, 2)).transpose();
+    A[std::size_t(f)] = 0.5 * (b - a).cross(c - a).norm();
+  }
+  return A;
+}
+
+/// Area of each region and of the sea for the face areas A.
+inline void region_areas(const std::vector<std::vector<std::pair<std::size_t, double> > >& parts,
+                         const std::vector<double>& A, std::size_t regions, std::vector<double>& area, double& sea)
+{
+  area.assign(regions, 0.);
+  sea = 0;
+  for(std::size_t f = 0; f < parts.size(); ++f) {
+    double covered = 0;
+    for(const auto& p : parts[f]) {
+      area[p.first] += p.second * A[f];
+      covered += p.second;
+    }
+    sea += std::max(0., 1 - covered) * A[f];
+  }
+}
+
+/// Face populations for per-region densities (and the sea's), with a floor
+/// that keeps every face population positive (regions of value 0).
+inline std::vector<double> populations_for_densities(const std::vector<std::vector<std::pair<std::size_t, double> > >& parts,
+                                                     const std::vector<double>& A, const std::vector<double>& density,
+                                                     double sea_density)
+{
+  std::vector<double> P(parts.size());
+  double total = 0, area = 0;
+  for(std::size_t f = 0; f < parts.size(); ++f) {
+    double covered = 0, d = 0;
+    for(const auto& p : parts[f]) {
+      d += p.second * density[p.first];
+      covered += p.second;
+    }
+    d += std::max(0., 1 - covered) * sea_density;
+    P[f] = d * A[f];
+    total += P[f];
+    area += A[f];
+  }
+  const double floor = 1e-9 * total / area;
+  for(std::size_t f = 0; f < P.size(); ++f) P[f] = std::max(P[f], floor * A[f]);
+  return P;
+}
+
+inline void check_values(const std::vector<Spherical_region>& regions, const std::vector<double>& values)
+{
+  if(regions.empty()) throw Invalid_input("no regions given");
+  if(values.size() != regions.size())
+    throw Invalid_input(std::to_string(values.size()) + " values for " + std::to_string(regions.size()) + " regions");
+  double total = 0;
+  for(std::size_t r = 0; r < values.size(); ++r) {
+    if(!(values[r] >= 0) || !std::isfinite(values[r]))
+      throw Invalid_input("region \"" + regions[r].id + "\": the value " + std::to_string(values[r]) +
+                          " is not a non-negative number");
+    total += values[r];
+  }
+  if(!(total > 0)) throw Invalid_input("the values sum to 0");
+}
+
+template <class TriangleMesh, class NamedParameters>
+Region_populations region_populations(const Mesh_arrays<TriangleMesh>& a, const std::vector<Spherical_region>& regions,
+                                      const std::vector<double>& values, const NamedParameters& np)
+{
+  using CGAL::parameters::choose_parameter;
+  using CGAL::parameters::get_parameter;
+  using CGAL::parameters::is_default_parameter;
+  check_values(regions, values);
+  const int subdivision = choose_parameter(get_parameter(np, internal_np::overlap_subdivision), 8);
+  if(subdivision < 1 || subdivision > 64) throw Invalid_input("overlap_subdivision must be in [1, 64]");
+  Region_populations out;
+  Face_region_overlaps o = face_region_overlaps(a.X, a.F, regions, subdivision);
+  out.face_parts = std::move(o.parts);
+  out.face_area = flat_face_areas(a.X, a.F);
+  const double mean_face = std::accumulate(out.face_area.begin(), out.face_area.end(), 0.) / double(out.face_area.size());
+  out.overlapping_area = o.overlapping_fraction * mean_face;
+  region_areas(out.face_parts, out.face_area, regions.size(), out.region_area, out.sea_area);
+  out.land_area = std::accumulate(out.region_area.begin(), out.region_area.end(), 0.);
+  if(!(out.land_area > 0)) throw Invalid_input("the regions cover no part of the globe mesh");
+  const double total = std::accumulate(values.begin(), values.end(), 0.);
+  out.mean_land_density = total / out.land_area;
+  if constexpr(!is_default_parameter<NamedParameters, internal_np::sea_density_t>::value) {
+    out.sea_density = get_parameter(np, internal_np::sea_density);
+    if(!(out.sea_density > 0) || !std::isfinite(out.sea_density))
+      throw Invalid_input("the sea density must be positive and finite");
+  } else {
+    out.sea_density = out.mean_land_density;
+  }
+  std::vector<double> density(regions.size());
+  for(std::size_t r = 0; r < regions.size(); ++r)
+    density[r] = out.region_area[r] > 0 ? values[r] / out.region_area[r] : 0;
+  out.face_population = populations_for_densities(out.face_parts, out.face_area, density, out.sea_density);
+  return out;
+}
+
+} // namespace internal
+
+/// \ingroup PkgDensityEqualizingMapsCartogram
+/// \brief Computes the population of each face of a globe mesh from regions of the
+/// globe and one value per region.
+///
+/// A face shared by several regions gets the population of the parts it covers: region
+/// \f$ r \f$ of value \f$ v_r \f$ and area \f$ A_r \f$ on the mesh contributes
+/// \f$ v_r \, |T \cap r| / A_r \f$ to face \f$ T \f$, where \f$ |T \cap r| \f$ is the area of
+/// the overlap (computed on the sphere, great-circle edges, see below); the part of
+/// \f$ T \f$ that no region covers (the sea) gets the sea density times its area.
+///
+/// Overlaps: each face near a region boundary is split into \f$ s^2 \f$ congruent
+/// sub-triangles (\f$ s \f$ = `overlap_subdivision`) whose centroids are classified by an
+/// exact spherical point-in-polygon test (crossing parity of great-circle arcs, with
+/// CGAL's exact orientation predicate); faces away from boundaries are classified whole.
+/// The mesh, the rings crossing the antimeridian and the rings around a pole are all
+/// handled on the sphere in 3D; no projection is involved.
+///
+/// \tparam TriangleMesh a model of `FaceListGraph`
+/// \param tm a closed triangle mesh with its vertices on the unit sphere (the globe)
+/// \param regions the regions (each ring encloses its smaller side, see `Spherical_polygon`)
+/// \param values one non-negative value per region (population, GDP, ...)
+/// \param np optional named parameters:
+/// \cgalNamedParamsBegin
+///   \cgalParamNBegin{sea_density}
+///     \cgalParamDescription{the population per unit area of the parts of the globe outside every region}
+///     \cgalParamType{double}
+///     \cgalParamDefault{the mean land density (total value / land area), so that the sea keeps its area}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{overlap_subdivision}
+///     \cgalParamDescription{\f$ s \f$: faces near a boundary are sampled with \f$ s^2 \f$ sub-triangles}
+///     \cgalParamType{int}
+///     \cgalParamDefault{8}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{vertex_point_map, vertex_index_map}
+///     \cgalParamDescription{as for `spherical_density_equalizing_map()`}
+///   \cgalParamNEnd
+/// \cgalNamedParamsEnd
+/// \pre the vertices of `tm` are on the unit sphere (checked, within 1e-6)
+/// \pre `values.size() == regions.size()`, every value is finite and non-negative and their sum is
+///      positive (checked)
+/// \returns the face populations (in the order of `faces(tm)`), with the overlaps and areas they come from
+/// \throws Invalid_input on a violated precondition or an invalid ring (fewer than 3 distinct
+///   positions, antipodal consecutive positions), naming the region
+template <class TriangleMesh, class NamedParameters = parameters::Default_named_parameters>
+Region_populations face_populations_from_regions(const TriangleMesh& tm, const std::vector<Spherical_region>& regions,
+                                                 const std::vector<double>& values,
+                                                 const NamedParameters& np = parameters::default_values())
+{
+  return internal::region_populations(internal::globe_arrays(tm, np), regions, values, np);
+}
+
+/// \ingroup PkgDensityEqualizingMapsCartogram
+/// \brief Carries region boundaries through a map of a globe mesh onto the sphere.
+///
+/// Each ring edge is first densified along its great circle, with points at most
+/// `boundary_step` apart (the same points for an edge shared by two rings, so that shared
+/// borders stay shared), then every point is located on the globe mesh `tm` and pushed
+/// forward through the map with `Point_transfer`. The rings keep their order of vertices,
+/// hence their orientation; a fold-free map keeps disjoint regions disjoint.
+///
+/// \tparam TriangleMesh a model of `FaceListGraph` and `HalfedgeGraph`
+/// \tparam MappedPointMap a readable vertex property map with the image of each vertex on the unit sphere
+/// \param tm the globe mesh (vertices on the unit sphere)
+/// \param mapped the map of `tm` onto the sphere (for instance the output of `globe_cartogram()`)
+/// \param regions the regions on the globe of `tm`
+/// \param np optional named parameters:
+/// \cgalNamedParamsBegin
+///   \cgalParamNBegin{boundary_step}
+///     \cgalParamDescription{the largest angle (radians) between consecutive points of a densified ring}
+///     \cgalParamType{double}
+///     \cgalParamDefault{half the mean edge length of `tm`}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{vertex_point_map, vertex_index_map}
+///     \cgalParamDescription{as for `Point_transfer`}
+///   \cgalParamNEnd
+/// \cgalNamedParamsEnd
+/// \pre `tm` is a closed genus-0 mesh on the unit sphere and `mapped` a fold-free map of it onto the unit sphere (checked)
+/// \returns the regions with their rings densified and carried through the map (same ids, same
+///   polygons and rings, in the same order)
+/// \throws Invalid_input on a violated precondition or an invalid ring
+template <class TriangleMesh, class MappedPointMap, class NamedParameters = parameters::Default_named_parameters>
+std::vector<Spherical_region> push_forward_region_boundaries(const TriangleMesh& tm, MappedPointMap mapped,
+                                                             const std::vector<Spherical_region>& regions,
+                                                             const NamedParameters& np = parameters::default_values())
+{
+  using CGAL::parameters::choose_parameter;
+  using CGAL::parameters::get_parameter;
+  typedef CGAL::Simple_cartesian<double>::Point_3 Point;
+  const internal::Mesh_arrays<TriangleMesh> a = internal::globe_arrays(tm, np);
+  double mean_edge = 0;
+  for(Eigen::Index f = 0; f < a.F.rows(); ++f)
+    for(int j = 0; j < 3; ++j) mean_edge += (a.X.row(a.F(f, j)) - a.X.row(a.F(f, (j + 1) % 3))).norm();
+  mean_edge /= double(3 * a.F.rows());
+  const double step = choose_parameter(get_parameter(np, internal_np::boundary_step), 0.5 * mean_edge);
+  if(!(step > 0)) throw Invalid_input("boundary_step must be positive");
+  auto vpm = choose_parameter(get_parameter(np, internal_np::vertex_point), get_const_property_map(vertex_point, tm));
+  const Point_transfer<TriangleMesh, Unit_sphere_domain, Point> globe(tm, vpm, Unit_sphere_domain(), np);
+  const Point_transfer<TriangleMesh, Unit_sphere_domain, Point> image(tm, mapped, Unit_sphere_domain(), np);
+  std::vector<Spherical_region> out;
+  out.reserve(regions.size());
+  for(std::size_t r = 0; r < regions.size(); ++r) {
+    Spherical_region d;
+    d.id = regions[r].id;
+    for(std::size_t p = 0; p < regions[r].polygons.size(); ++p) {
+      // validated rings (repeated points removed)
+      const std::vector<internal::Spherical_ring> rings =
+        internal::polygon_rings(regions[r].polygons[p], "region \"" + regions[r].id + "\", polygon " + std::to_string(p));
+      Spherical_polygon q;
+      for(const internal::Spherical_ring& ring : rings) {
+        std::vector<Eigen::Vector3d> dense;
+        for(std::size_t i = 0; i < ring.size(); ++i) internal::densify_arc(ring.vertex(i), ring.next_vertex(i), step, dense);
+        std::vector<Lon_lat> moved;
+        moved.reserve(dense.size());
+        for(const Eigen::Vector3d& x : dense) {
+          const Point y = image.push_forward(globe.locate(Point(x.x(), x.y(), x.z())));
+          moved.push_back(internal::lon_lat(Eigen::Vector3d(y.x(), y.y(), y.z())));
+        }
+        q.rings.push_back(std::move(moved));
+      }
+      d.polygons.push_back(std::move(q));
+    }
+    out.push_back(std::move(d));
+  }
+  return out;
+}
+
+/// \ingroup PkgDensityEqualizingMapsCartogram
+/// \brief Computes a globe cartogram: a fold-free map of the globe onto itself under which
+/// every region's share of the land area is its share of the values.
+///
+/// The face populations are those of `face_populations_from_regions()`. The map is a
+/// composition of spherical density-equalizing maps (`spherical_density_equalizing_map()`),
+/// each started from the identity of the current globe: the first equalizes the face
+/// populations; as the flow stops at a tolerance on the density, not on the regions' areas,
+/// each further pass (as the planar cartogram tools of Gastner and Newman do) gives every
+/// region the density (target share) / (current share) on the deformed globe and flows again,
+/// until every region covering at least 50 faces has its area share within
+/// `relative_area_tolerance` of its value share, or `number_of_passes` passes are done.
+/// The sea keeps the share of the population the sea density gives it. Each pass is fold-free
+/// (certified by exact predicates), so is their composition.
+///
+/// \tparam TriangleMesh a model of `FaceListGraph` and `HalfedgeGraph`
+/// \tparam VertexPointOutMap a writable vertex property map with 3D points as values
+/// \param tm the globe: a closed genus-0 mesh with its vertices on the unit sphere
+/// \param regions the regions of the globe
+/// \param values one non-negative value per region
+/// \param sphere_map receives the image of each vertex on the unit sphere
+/// \param np optional named parameters: those of `face_populations_from_regions()`, those of
+///   `spherical_density_equalizing_map()` (used by every pass; `initial_map` and
+///   `face_population_map` are set by the passes), and:
+/// \cgalNamedParamsBegin
+///   \cgalParamNBegin{relative_area_tolerance}
+///     \cgalParamDescription{the largest relative error of a region's area share that stops the passes}
+///     \cgalParamType{double}
+///     \cgalParamDefault{0.01}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{number_of_passes}
+///     \cgalParamDescription{the largest number of density-equalizing passes}
+///     \cgalParamType{unsigned int}
+///     \cgalParamDefault{8}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{pass_callback}
+///     \cgalParamDescription{a callable `void(std::size_t pass, double max_relative_error)` called after each pass}
+///     \cgalParamDefault{none}
+///   \cgalParamNEnd
+/// \cgalNamedParamsEnd
+/// \pre as `face_populations_from_regions()` and `spherical_density_equalizing_map()` (checked)
+/// \returns the areas reached, the errors, the passes, and the populations used
+/// \throws Invalid_input on a violated precondition
+/// \throws Algorithm_failure if a pass cannot start (see `spherical_density_equalizing_map()`)
+template <class TriangleMesh, class VertexPointOutMap, class NamedParameters = parameters::Default_named_parameters>
+Globe_cartogram_report globe_cartogram(const TriangleMesh& tm, const std::vector<Spherical_region>& regions,
+                                       const std::vector<double>& values, VertexPointOutMap sphere_map,
+                                       const NamedParameters& np = parameters::default_values())
+{
+  using CGAL::parameters::choose_parameter;
+  using CGAL::parameters::get_parameter;
+  using CGAL::parameters::is_default_parameter;
+  typedef typename boost::graph_traits<TriangleMesh>::face_descriptor face_descriptor;
+  typedef CGAL::Simple_cartesian<double>::Point_3 Point;
+  const internal::Mesh_arrays<TriangleMesh> a = internal::globe_arrays(tm, np);
+  Globe_cartogram_report rep;
+  rep.populations = internal::region_populations(a, regions, values, np);
+  const Region_populations& pop = rep.populations;
+  const double tolerance = choose_parameter(get_parameter(np, internal_np::relative_area_tolerance), 0.01);
+  const std::size_t max_passes = choose_parameter(get_parameter(np, internal_np::number_of_passes), 8u);
+  if(!(tolerance > 0)) throw Invalid_input("relative_area_tolerance must be positive");
+  if(max_passes < 1) throw Invalid_input("number_of_passes must be at least 1");
+
+  const std::size_t nr = regions.size();
+  const double total_value = std::accumulate(values.begin(), values.end(), 0.);
+  const double total_population = total_value + pop.sea_density * pop.sea_area;
+  const double mean_face = std::accumulate(pop.face_area.begin(), pop.face_area.end(), 0.) / double(pop.face_area.size());
+  rep.value_share.resize(nr);
+  rep.faces_covered.resize(nr);
+  for(std::size_t r = 0; r < nr; ++r) {
+    rep.value_share[r] = values[r] / total_value;
+    rep.faces_covered[r] = pop.region_area[r] / mean_face;
+    if(rep.faces_covered[r] < rep.minimum_faces) rep.too_small.push_back(r);
+  }
+  rep.sea_target_share = pop.sea_density * pop.sea_area / total_population;
+  std::vector<char> small(nr, 0);
+  for(std::size_t r : rep.too_small) small[r] = 1;
+
+  // current map, by vertex index and face index of the arrays
+  internal::Matrix Y = a.X;
+  std::vector<Point> position(a.vertices.size());
+  std::vector<double> face_pop(a.faces.size());
+  auto vim = CGAL::get_initialized_vertex_index_map(tm, np);
+  std::map<face_descriptor, std::size_t> face_slot;
+  for(std::size_t k = 0; k < a.faces.size(); ++k) face_slot[a.faces[k]] = k;
+  auto position_map = boost::make_iterator_property_map(position.begin(), vim);
+  auto population_map = boost::make_function_property_map<face_descriptor>(
+    [&](face_descriptor f) { return face_pop[face_slot.at(f)]; });
+
+  auto measure = [&](const internal::Matrix& Z, std::vector<double>& area, double& sea) {
+    internal::region_areas(pop.face_parts, internal::flat_face_areas(Z, a.F), nr, area, sea);
+    const double land = std::accumulate(area.begin(), area.end(), 0.);
+    rep.area_share.assign(nr, 0.);
+    rep.relative_error.assign(nr, 0.);
+    rep.max_relative_error = rep.mean_relative_error = 0;
+    std::size_t counted = 0;
+    for(std::size_t r = 0; r < nr; ++r) {
+      rep.area_share[r] = area[r] / land;
+      rep.relative_error[r] = rep.value_share[r] > 0 ? std::abs(rep.area_share[r] / rep.value_share[r] - 1)
+                                                     : (rep.area_share[r] > 0 ? 1. : 0.);
+      if(small[r]) continue;
+      rep.max_relative_error = std::max(rep.max_relative_error, rep.relative_error[r]);
+      rep.mean_relative_error += rep.relative_error[r];
+      ++counted;
+    }
+    if(counted > 0) rep.mean_relative_error /= double(counted);
+    rep.sea_area_share = sea / (land + sea);
+  };
+
+  std::vector<double> area;
+  double sea = 0;
+  measure(Y, area, sea);
+  for(std::size_t pass = 0; pass < max_passes; ++pass) {
+    // densities that would give every region its target share if the flow equalized exactly
+    const std::vector<double> A = internal::flat_face_areas(Y, a.F);
+    std::vector<double> density(nr);
+    for(std::size_t r = 0; r < nr; ++r) density[r] = area[r] > 0 ? values[r] / total_population / area[r] : 0;
+    const double sea_density = sea > 0 ? rep.sea_target_share / sea : 0;
+    face_pop = internal::populations_for_densities(pop.face_parts, A, density, sea_density);
+    for(std::size_t i = 0; i < position.size(); ++i) position[i] = Point(Y(i, 0), Y(i, 1), Y(i, 2));
+    std::vector<Point> next(position.size());
+    auto next_map = boost::make_iterator_property_map(next.begin(), vim);
+    rep.last_pass = spherical_density_equalizing_map(
+      tm, next_map,
+      parameters::combine(np, parameters::initial_map(position_map), parameters::face_population_map(population_map),
+                          parameters::vertex_point_map(position_map)));
+    ++rep.passes;
+    if(rep.last_pass.fold_overs > 0) break; // keep the last fold-free map
+    for(std::size_t i = 0; i < next.size(); ++i) {
+      const Eigen::Vector3d y(next[i].x(), next[i].y(), next[i].z());
+      Y.row(Eigen::Index(i)) = y.normalized().transpose();
+    }
+    measure(Y, area, sea);
+    rep.max_error_after_pass.push_back(rep.max_relative_error);
+    if constexpr(!is_default_parameter<NamedParameters, internal_np::pass_callback_t>::value)
+      get_parameter(np, internal_np::pass_callback)(rep.passes, rep.max_relative_error);
+    if(rep.max_relative_error <= tolerance) break;
+  }
+  rep.converged = rep.max_relative_error <= tolerance;
+  rep.fold_overs = internal::count_inverted_faces_about_center(Y, a.F);
+  internal::write_points(a, Y, sphere_map);
+  return rep;
+}
+
+} // namespace Density_equalizing_maps
+} // namespace CGAL
+
+#endif // CGAL_DENSITY_EQUALIZING_MAPS_GLOBE_CARTOGRAM_H
