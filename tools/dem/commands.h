@@ -28,6 +28,9 @@ struct Application
 /// `dem remesh ...` (remesh.cpp).
 extern const Application remesh_application;
 
+/// `dem register ...` (register_command.cpp).
+extern const Application register_application;
+
 /// The applications built into this `dem` (main.cpp).
 const std::vector<Application>& applications();
 

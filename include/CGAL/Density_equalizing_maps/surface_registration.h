@@ -84,6 +84,8 @@ struct Registration_report
   /// mean over the source faces of \f$ |\mu| \f$ and \f$ |d_{area}| \f$ of the registration map
   /// (source surface to registered points, see `map_distortion()`)
   double mean_abs_mu = 0, mean_abs_darea = 0;
+  /// the image of every source / target vertex on the domain (in the order of the vertex index maps)
+  std::vector<std::array<double, 3> > source_domain_points, target_domain_points;
   /// \returns `true`: a report is only returned for two fold-free maps
   bool is_bijective() const { return source_map.fold_overs == 0 && target_map.fold_overs == 0; }
 };
@@ -449,6 +451,8 @@ Registration_report register_surfaces(const SourceMesh& source, const TargetMesh
     report.landmark_error_mean += e / double(ls.size());
     report.landmark_error_max = (std::max)(report.landmark_error_max, e);
   }
+  for(const auto& p : source_image.points) report.source_domain_points.push_back({{p.x(), p.y(), p.z()}});
+  for(const auto& p : target_image.points) report.target_domain_points.push_back({{p.x(), p.y(), p.z()}});
   for(Eigen::Index k = 0; k < common.rows(); ++k)
     report.landmark_positions.push_back({{common(k, 0), common(k, 1), common(k, 2)}});
   {
