@@ -19,6 +19,7 @@
 #include <CGAL/Density_equalizing_maps/IO/landmark_pairs.h>
 #include <CGAL/Density_equalizing_maps/surface_registration.h>
 #include <CGAL/Density_equalizing_maps/measures.h>
+#include <CGAL/Polygon_mesh_processing/measure.h>
 
 #include <fstream>
 #include <sstream>
@@ -103,6 +104,32 @@ void ellipsoid_route()
   // a correspondence, not a collapse: well below the error of sending every vertex to the
   // target's centroid (about a quarter of the diagonal here)
   check(a.mean < 0.03, "ellipsoid route: mean error < 3 % of the diagonal");
+}
+
+// the populations pass through: the face areas given explicitly give the default result
+void populations_pass_through()
+{
+  R::Case c = R::make_case(600, 650, 8);
+  auto a = c.source.add_property_map<R::Vertex, R::Point>("v:a").first;
+  auto b = c.source.add_property_map<R::Vertex, R::Point>("v:b").first;
+  auto ps = c.source.add_property_map<Face, double>("f:p").first;
+  auto pt = c.target.add_property_map<Face, double>("f:p").first;
+  for(Face f : c.source.faces()) ps[f] = 3 * CGAL::Polygon_mesh_processing::face_area(f, c.source);
+  for(Face f : c.target.faces()) pt[f] = 5 * CGAL::Polygon_mesh_processing::face_area(f, c.target);
+  DEM::register_surfaces(c.source, c.target, c.pairs, a);
+  const DEM::Registration_report r = DEM::register_surfaces(
+    c.source, c.target, c.pairs, b,
+    DEM::parameters::combine(DEM::parameters::face_population_map(ps), DEM::parameters::target_face_population_map(pt)));
+  double d = 0;
+  for(R::Vertex v : c.source.vertices()) d = (std::max)(d, (R::to_eigen(a[v]) - R::to_eigen(b[v])).norm());
+  check(r.is_bijective() && d < 1e-6 * r.target_diagonal, "populations proportional to the areas give the default result");
+  // a population that differs on the target changes the correspondence (it is used)
+  for(Face f : c.target.faces()) pt[f] = (c.target.point(c.target.target(c.target.halfedge(f))).z() > 2 ? 4 : 1) *
+                                         CGAL::Polygon_mesh_processing::face_area(f, c.target);
+  DEM::register_surfaces(c.source, c.target, c.pairs, b, DEM::parameters::target_face_population_map(pt));
+  d = 0;
+  for(R::Vertex v : c.source.vertices()) d = (std::max)(d, (R::to_eigen(a[v]) - R::to_eigen(b[v])).norm());
+  check(d > 1e-3 * r.target_diagonal, "the target's population is used");
 }
 
 void bad_input_library()
@@ -255,6 +282,7 @@ int main(int argc, char** argv)
   }
   bad_input_reader();
   bad_input_library();
+  populations_pass_through();
   accuracy_on_the_sphere();
   ellipsoid_route();
   command_line();
