@@ -233,6 +233,7 @@ void command_line()
   refused("0 1\n1 2\n99999 3\n", dir / "target.off", "source vertex 99999 out of range");
   refused("0 1\n1 2\n0 1\n", dir / "target.off", "duplicate pair");
   write_off(dem_test::torus(3, 1, 24, 12), dir / "torus.off");
+  refused("0 1\n1 2\n3 4\n", dir / "torus.off", "genus mismatch");
   refused("0 1\n1 2\n3 4\n", dir / "torus.off", "genus 1");
   const auto v = dem_cli_test::run_dem(dir, "register " + base + " --via conformal");
   check(v.code == 2 && contains(v.err, "--via must be"), "unknown --via is a usage error");

@@ -119,8 +119,16 @@ int register_command(const std::vector<std::string>& args)
   std::vector<Vertex> ls, lt;
   double seconds = 0, cpu = 0;
   try {
-    read_named("source", ra.source, opt, src);
-    read_named("target", ra.target, opt, tgt);
+    // both surfaces are read before any error is reported, so that a genus mismatch is named as such
+    std::string source_error, target_error;
+    try { read_named("source", ra.source, opt, src); } catch(const DEM::Invalid_input& e) { source_error = e.what(); }
+    try { read_named("target", ra.target, opt, tgt); } catch(const DEM::Invalid_input& e) { target_error = e.what(); }
+    const auto wrong_genus = [](const std::string& m) { return m.find("wrong topology") != std::string::npos; };
+    if(source_error.empty() != target_error.empty() && wrong_genus(source_error + target_error))
+      throw DEM::Invalid_input("genus mismatch: the " + std::string(source_error.empty() ? "source" : "target") +
+                               " surface has genus 0 but " + source_error + target_error);
+    if(!source_error.empty()) throw DEM::Invalid_input(source_error);
+    if(!target_error.empty()) throw DEM::Invalid_input(target_error);
     const auto pairs = DEM::IO::read_landmark_pairs(ra.pairs, src.mesh.number_of_vertices(), tgt.mesh.number_of_vertices());
     std::vector<std::pair<Vertex, Vertex>> vp;
     for(const auto& p : pairs) {
