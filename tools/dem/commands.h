@@ -32,6 +32,8 @@ extern const Application remesh_application;
 /// `dem cartogram ...` (cartogram_command.cpp; needs nlohmann-json).
 extern const Application cartogram_application;
 #endif
+/// `dem register ...` (register_command.cpp).
+extern const Application register_application;
 
 /// The applications built into this `dem` (main.cpp).
 const std::vector<Application>& applications();

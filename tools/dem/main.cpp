@@ -21,7 +21,7 @@ namespace dem_cli {
 const std::vector<Application>& applications()
 {
   // Applications register here, one file each (remesh.cpp, ...).
-  static const std::vector<Application> a = {remesh_application,
+  static const std::vector<Application> a = {remesh_application, register_application,
 #ifdef DEM_HAVE_CARTOGRAM
                                              cartogram_application,
 #endif
