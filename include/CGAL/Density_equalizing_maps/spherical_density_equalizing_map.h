@@ -100,7 +100,7 @@ Matrix initial_spherical_map(const Mesh_arrays<TriangleMesh>& a, const NamedPara
 ///     \cgalParamDefault{200}
 ///   \cgalParamNEnd
 ///   \cgalParamNBegin{truncation}
-///     \cgalParamDescription{the Beltrami coefficient of an inverted face is set to modulus 1 - truncation before the LBS repair}
+///     \cgalParamDescription{the Beltrami coefficient of an inverted face is set to modulus 1 - truncation before the LBS repair of a folding step (used by `landmark_aligned_spherical_density_equalizing_map()` only: the other flows untangle a folding step locally)}
 ///     \cgalParamType{double}
 ///     \cgalParamDefault{0.1}
 ///   \cgalParamNEnd
@@ -245,7 +245,7 @@ Map_report landmark_aligned_spherical_density_equalizing_map(const TriangleMesh&
     throw Algorithm_failure("the harmonic-energy system of the input mesh could not be factored");
   Map_report report;
   internal::Matrix x = internal::initial_spherical_map(a, np, *solver, report);
-  internal::Ellipsoid_domain sphere(a.F, x, Eigen::Vector3d::Ones(), truncation, *solver);
+  internal::Ellipsoid_domain sphere(a.F, x, Eigen::Vector3d::Ones(), truncation, *solver, true);
   const internal::Engine_result r = internal::run_density_equalization(sphere, flow, x, population, options, *diffusion_solver);
 
   internal::fill_report(r, report);
