@@ -60,9 +60,9 @@ Matrix initial_spherical_map(const Mesh_arrays<TriangleMesh>& a, const NamedPara
 /// diffuses (Lyu, Lui, Choi 2024): regions of high population grow, regions of
 /// low population shrink, until the density (population / image area) is uniform.
 /// With the default population (the face areas of the input) the result is an
-/// area-preserving parameterization. Every step is checked for fold-overs in two
-/// stereographic charts, repaired with the Linear Beltrami Solver, and certified
-/// with exact predicates; if no fold-over-free step can be found the last
+/// area-preserving parameterization. Every step is checked for fold-overs with
+/// exact predicates; the faces of a folding step are untangled locally and the
+/// step is halved if that fails; if no fold-over-free step can be found the last
 /// bijective map is returned and `Map_report::termination` is `Termination::STALLED`.
 ///
 /// \tparam TriangleMesh a model of `FaceListGraph`
@@ -113,7 +113,7 @@ Matrix initial_spherical_map(const Mesh_arrays<TriangleMesh>& a, const NamedPara
 ///   \cgalParamNEnd
 ///   \cgalParamNBegin{sparse_linear_solver}
 ///     \cgalParamDescription{a model of `SparseLinearAlgebraWithFactorTraits_d` for the SPD systems}
-///     \cgalParamDefault{`Default_sparse_solver_traits` for the initial map and the Beltrami repairs; the
+///     \cgalParamDefault{`Default_sparse_solver_traits` for the initial map and the Beltrami repairs (LSDEM); the
 ///       diffusion steps, one per iteration on a slowly moving mesh, use conjugate gradients warm-started from
 ///       the previous iterations and preconditioned by a factorization of an earlier diffusion matrix (Jacobi
 ///       below 4000 vertices), refactored only when it stops being effective. If given, this solver is used
@@ -167,8 +167,10 @@ Map_report spherical_density_equalizing_map(const TriangleMesh& tm, VertexPointO
 /// their targets, computed in closed form (Kabsch) where the paper uses gradient
 /// descent over Euler angles: it is the global minimizer of the same term.
 /// Stops when the largest vertex update (sum of absolute coordinate changes)
-/// falls below the tolerance. Fold-overs are repaired as in
-/// `spherical_density_equalizing_map()`.
+/// falls below the tolerance. A folding step is first rebuilt with the Linear
+/// Beltrami Solver in two stereographic charts, then untangled and halved as in
+/// `spherical_density_equalizing_map()` (without the chart repair the untangling
+/// undoes the landmark pull: the landmark error grows with `landmark_weight`).
 ///
 /// \tparam Landmarks a range of `std::pair<vertex_descriptor, Point_3>`; targets must lie on the unit
 ///         sphere (within 1e-4; they are then normalized)
