@@ -143,10 +143,11 @@ int main(int argc, char** argv)
     std::cout << "coarse cigar " << elongation << ":1: " << n << " fold-overs, Tutte fallback "
               << r.used_tutte_fallback << ", repairs " << r.repairs << ", mean|mu| " << mu << std::endl;
     check(r.used_tutte_fallback, "coarse cigar: the harmonic north step folds (Tutte fallback used)");
-    // The chart repair's case: it takes the Tutte map the whole way (dt = 1)
-    // to the LBS-repaired conformal one; step halving alone stops part of the
-    // way, nearer the Tutte map. Measured with the repair: mean |mu| 0.519
-    // (4:1) and 0.763 (10:1); the bound leaves 6 % for round-off.
+    // The step from the Tutte map to the (folded) harmonic one is untangled
+    // and, where that fails, halved. Measured: mean |mu| 0.509 (4:1) and 0.776
+    // (10:1); until 2026-12 a two-chart LBS repair ran first and gave 0.519 and
+    // 0.763 (benchmark/RESULTS.md, "Repairs and fallbacks"): the bounds sit
+    // above both.
     check(mu <= (elongation == 4. ? 0.55 : 0.81), "coarse cigar: mean |mu| of the repaired map");
     check(r.fold_overs == n, "coarse cigar: report.fold_overs is the exact count");
     check(n == 0, "coarse cigar: the Tutte-started repair makes the map bijective");

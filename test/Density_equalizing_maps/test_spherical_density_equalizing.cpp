@@ -129,6 +129,12 @@ void test_step_cap_population()
   const DEM::Map_report r = DEM::spherical_density_equalizing_map(m, out, np_pop);
   check_bijective_on_sphere(m, out, r, "SDEM step cap x10");
   check(r.converged(), "SDEM step cap x10: converged");
+  // The local untangling's case: steps of this flow fold a few faces of the
+  // band outside the growing cap (exact test); the untangling removes those
+  // folds without shortening the step. Without it every such step would be
+  // halved (mutation untangling_skipped of scripts/mutation_check.py).
+  check(r.repairs > 0, "SDEM step cap x10: some steps folded and were repaired");
+  check(r.step_halvings == 0, "SDEM step cap x10: every folding step untangled at full length (no halving)");
   const DEM::Density_variance v0 = DEM::density_variance(m, m.points(), np_pop);
   const DEM::Density_variance v1 = DEM::density_variance(m, out, np_pop);
   std::cout << "SDEM step cap x10: Var(vertex density) " << v0.vertex << " -> " << v1.vertex

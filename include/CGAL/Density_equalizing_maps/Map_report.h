@@ -88,8 +88,9 @@ struct Map_report
   double final_error = -1;
   /// initial value of the stopping quantity
   double initial_error = -1;
-  /// number of Linear Beltrami Solver repairs performed (fold-over repairs of
-  /// the flow, and those that moved a fallback start towards the conformal map)
+  /// number of fold-over repairs of a step (local untangling and Linear
+  /// Beltrami Solver repairs; those of the flow, and those that moved a
+  /// fallback start towards the conformal map)
   std::size_t repairs = 0;
   /// number of times the time step was halved during repairs
   std::size_t step_halvings = 0;

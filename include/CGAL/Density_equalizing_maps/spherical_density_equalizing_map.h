@@ -62,9 +62,9 @@ Matrix initial_spherical_map(const Mesh_arrays<TriangleMesh>& a, const NamedPara
 /// diffuses (Lyu, Lui, Choi 2024): regions of high population grow, regions of
 /// low population shrink, until the density (population / image area) is uniform.
 /// With the default population (the face areas of the input) the result is an
-/// area-preserving parameterization. Every step is checked for fold-overs in two
-/// stereographic charts, repaired with the Linear Beltrami Solver, and certified
-/// with exact predicates; if no fold-over-free step can be found the last
+/// area-preserving parameterization. Every step is checked for fold-overs with
+/// exact predicates; the faces of a folding step are untangled locally and the
+/// step is halved if that fails; if no fold-over-free step can be found the last
 /// bijective map is returned and `Map_report::termination` is `Termination::STALLED`.
 ///
 /// \tparam TriangleMesh a model of `FaceListGraph`
@@ -102,7 +102,7 @@ Matrix initial_spherical_map(const Mesh_arrays<TriangleMesh>& a, const NamedPara
 ///     \cgalParamDefault{200}
 ///   \cgalParamNEnd
 ///   \cgalParamNBegin{truncation}
-///     \cgalParamDescription{the Beltrami coefficient of an inverted face is set to modulus 1 - truncation before the LBS repair}
+///     \cgalParamDescription{the Beltrami coefficient of an inverted face is set to modulus 1 - truncation before the LBS repair of a folding step (used by `landmark_aligned_spherical_density_equalizing_map()` only: the other flows untangle a folding step locally)}
 ///     \cgalParamType{double}
 ///     \cgalParamDefault{0.1}
 ///   \cgalParamNEnd
@@ -121,7 +121,7 @@ Matrix initial_spherical_map(const Mesh_arrays<TriangleMesh>& a, const NamedPara
 ///   \cgalParamNEnd
 ///   \cgalParamNBegin{sparse_linear_solver}
 ///     \cgalParamDescription{a model of `SparseLinearAlgebraWithFactorTraits_d` for the SPD systems}
-///     \cgalParamDefault{`Default_sparse_solver_traits` for the initial map and the Beltrami repairs; the
+///     \cgalParamDefault{`Default_sparse_solver_traits` for the initial map and the Beltrami repairs (LSDEM); the
 ///       diffusion steps, one per iteration on a slowly moving mesh, use conjugate gradients warm-started from
 ///       the previous iterations and preconditioned by a factorization of an earlier diffusion matrix (Jacobi
 ///       below 4000 vertices), refactored only when it stops being effective. If given, this solver is used
@@ -175,8 +175,10 @@ Map_report spherical_density_equalizing_map(const TriangleMesh& tm, VertexPointO
 /// their targets, computed in closed form (Kabsch) where the paper uses gradient
 /// descent over Euler angles: it is the global minimizer of the same term.
 /// Stops when the largest vertex update (sum of absolute coordinate changes)
-/// falls below the tolerance. Fold-overs are repaired as in
-/// `spherical_density_equalizing_map()`.
+/// falls below the tolerance. A folding step is first rebuilt with the Linear
+/// Beltrami Solver in two stereographic charts, then untangled and halved as in
+/// `spherical_density_equalizing_map()` (without the chart repair the untangling
+/// undoes the landmark pull: the landmark error grows with `landmark_weight`).
 ///
 /// \tparam Landmarks a range of `std::pair<vertex_descriptor, Point_3>`; targets must lie on the unit
 ///         sphere (within 1e-4; they are then normalized)
@@ -253,7 +255,7 @@ Map_report landmark_aligned_spherical_density_equalizing_map(const TriangleMesh&
     throw Algorithm_failure("the harmonic-energy system of the input mesh could not be factored");
   Map_report report;
   internal::Matrix x = internal::initial_spherical_map(a, np, *solver, report);
-  internal::Ellipsoid_domain sphere(a.F, x, Eigen::Vector3d::Ones(), truncation, *solver);
+  internal::Ellipsoid_domain sphere(a.F, x, Eigen::Vector3d::Ones(), truncation, *solver, true);
   const internal::Engine_result r = internal::run_density_equalization(sphere, flow, x, population, options, *diffusion_solver);
 
   internal::fill_report(r, report);

@@ -8,8 +8,13 @@
 // The sphere and ellipsoid domains of the density-equalizing engine
 // (ALGORITHMS.md sections 7 and 9.1). The unit sphere is the ellipsoid with
 // radii (1,1,1); the ellipsoid maps to the sphere by h(x,y,z) = (x/a, y/b, z/c),
-// a linear map that neither creates nor removes fold-overs, so both repair
-// fold-overs with the same two-chart Linear Beltrami Solver step on the sphere.
+// a linear map that neither creates nor removes fold-overs, so both repair a
+// folding step the same way on the sphere: local untangling, then step
+// halving; the landmark flow (LSDEM) first rebuilds the step in two
+// stereographic charts by the Linear Beltrami Solver. That chart repair made
+// every other flow slower and worse, and LSDEM needs it: without it its
+// landmark error grows with the landmark weight (benchmark/RESULTS.md,
+// "Session 6").
 
 #include <CGAL/Density_equalizing_maps/internal/beltrami.h>
 #include <CGAL/Density_equalizing_maps/internal/density_engine.h>
@@ -209,12 +214,13 @@ class Ellipsoid_domain : public Surface_operators
 {
 public:
   /// `initial` is the bijective starting map on this ellipsoid; it is the
-  /// reference of the fold-over repair.
+  /// reference of the chart repair, which runs only if `chart_repair` is true
+  /// (the landmark flow; `truncation` is its |mu| truncation).
   Ellipsoid_domain(const Index_matrix& F, const Matrix& initial, const Eigen::Vector3d& radii, double truncation,
-                   const Spd_solver& prototype)
+                   const Spd_solver& prototype, bool chart_repair = false)
     : Surface_operators(F, initial.rows()), m_F(F), m_radii(radii),
       m_repair(F, to_unit_sphere(initial, radii), truncation, prototype),
-      m_vertex_faces(vertex_face_incidence(F, initial.rows()))
+      m_vertex_faces(vertex_face_incidence(F, initial.rows())), m_chart_repair(chart_repair)
   {
     m_pole = most_regular_one_ring_face(m_repair.reference(), F);
   }
@@ -236,8 +242,9 @@ public:
   }
 
   /// x_new = x + dt d on the domain. A step that folds (exact test) is
-  /// repaired in two stereographic charts (LBS) and untangled; if that fails,
-  /// dt is halved. A step that does not fold is taken as it is: the chart test
+  /// repaired in two stereographic charts (LBS, only with `chart_repair`) and
+  /// untangled (counted in `stats.repairs`); if that fails, dt is halved. A
+  /// step that does not fold is taken as it is: the chart test
   /// also flags faces that are not inverted (a thin face whose circumcircle
   /// encloses the chart's projection point has the opposite orientation in the
   /// chart), and repairing those steps only slowed the flows down
@@ -248,9 +255,14 @@ public:
       Matrix s = to_unit_sphere(x + dt * d, m_radii);
       bool ok = true;
       if(!inverted_faces_about_center(s, m_F).empty()) {
-        const Eigen::Index south = m_repair.antipodal_face(s, m_pole);
-        ok = m_repair.repair_in_chart(s, m_pole, stats.repairs) && m_repair.repair_in_chart(s, south, stats.repairs);
-        if(ok && !inverted_faces_about_center(s, m_F).empty()) ok = untangle_on_sphere(s, m_F, m_vertex_faces);
+        if(m_chart_repair) {
+          const Eigen::Index south = m_repair.antipodal_face(s, m_pole);
+          ok = m_repair.repair_in_chart(s, m_pole, stats.repairs) && m_repair.repair_in_chart(s, south, stats.repairs);
+        }
+        if(ok && !inverted_faces_about_center(s, m_F).empty()) {
+          ok = untangle_on_sphere(s, m_F, m_vertex_faces);
+          ++stats.repairs;
+        }
       }
       if(ok) {
         x_new = from_unit_sphere(s, m_radii);
@@ -290,6 +302,7 @@ private:
   Eigen::Vector3d m_radii;
   Spherical_chart_repair m_repair;
   std::vector<std::vector<Eigen::Index> > m_vertex_faces;
+  bool m_chart_repair;
   Eigen::Index m_pole = 0;
 };
 

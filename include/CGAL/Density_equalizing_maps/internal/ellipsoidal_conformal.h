@@ -505,7 +505,7 @@ private:
 /// An ellipsoidal map f of FECM or FEQCM that folds is replaced by the map
 /// moved from the FLASH map scaled to the ellipsoid (fold-free: the scaling is
 /// linear) towards f, as far as the fold-over repair of the density engine
-/// allows (Beltrami repair in two charts, untangling on the sphere, halving).
+/// allows (local untangling on the sphere, step halving).
 /// On tiny meshes (a tetrahedron, a 10-vertex bipyramid) the Moebius
 /// normalization of the poles moves the few vertices so far that the chordal
 /// faces no longer contain the centre: f folds although the chart maps are

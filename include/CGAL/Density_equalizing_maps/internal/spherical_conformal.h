@@ -145,9 +145,8 @@ inline Flash_result flash_spherical_map(const Matrix& X, const Index_matrix& F, 
   // On coarse meshes with many obtuse angles (negative cotangent weights) the
   // harmonic step can fold. Then start from the Tutte embedding (convex
   // weights: an embedding) and move towards the conformal map with the
-  // fold-over repair of the density engine: the Beltrami coefficients of the
-  // conformal map are kept wherever they are admissible, flipped faces get
-  // truncated ones, and the step is shortened if the repair cannot succeed.
+  // fold-over repair of the density engine: the folded faces of the step are
+  // untangled locally, and the step is shortened if that cannot succeed.
   if(count_inverted_faces_about_center(res.S, F) > 0) {
     begin_stage(stage, "fold repair from the Tutte embedding (the harmonic map folded)");
     const Complex tutte_corners[3] = {Complex(1, 0), std::polar(1., 2 * M_PI / 3), std::polar(1., 4 * M_PI / 3)};
