@@ -28,27 +28,15 @@
 #include <sys/wait.h> // WIFEXITED
 #include <unistd.h>   // getpid
 
-#ifndef DEM_CLI
-#error "DEM_CLI must name the dem executable"
-#endif
+#include "dem_cli_runner.h" // Soup, the text-mesh writers, check()
 
-namespace fs = std::filesystem;
 typedef CGAL::Exact_predicates_inexact_constructions_kernel::Point_3 Point;
-typedef std::array<double, 3> P3;
-typedef std::array<int, 3> Tri;
+using namespace dem_cli_test;
 
 namespace {
 
-int failures = 0;
-bool check(bool ok, const std::string& what)
-{
-  if(!ok) { ++failures; std::cerr << "FAILED: " << what << std::endl; }
-  return ok;
-}
-
-fs::path tmp_dir;
-
-struct Soup { std::vector<P3> V; std::vector<Tri> T; };
+const Temporary_folder folder("dem_test_cli");
+const fs::path& tmp_dir = folder.path;
 
 // Geodesic icosphere (frequency-2^k Loop-style midpoint subdivision), outward oriented.
 Soup icosphere(int subdivisions)
@@ -84,146 +72,16 @@ Soup icosphere(int subdivisions)
   return s;
 }
 
-Soup torus(double R, double r, int nu, int nv)
-{
-  Soup s;
-  const double pi = std::acos(-1.);
-  for(int i = 0; i < nu; ++i)
-    for(int j = 0; j < nv; ++j) {
-      const double u = 2 * pi * i / nu, v = 2 * pi * j / nv;
-      s.V.push_back({(R + r * std::cos(v)) * std::cos(u), (R + r * std::cos(v)) * std::sin(u), r * std::sin(v)});
-    }
-  auto id = [&](int i, int j) { return ((i + nu) % nu) * nv + (j + nv) % nv; };
-  for(int i = 0; i < nu; ++i)
-    for(int j = 0; j < nv; ++j) {
-      s.T.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
-      s.T.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
-    }
-  return s;
-}
+Soup torus(double R, double r, int nu, int nv) { return torus_soup(R, r, nu, nv); }
 
-std::string write_off(const std::string& name, const Soup& s)
-{
-  const fs::path p = tmp_dir / name;
-  std::ofstream out(p);
-  out.precision(17);
-  out << "OFF\n" << s.V.size() << " " << s.T.size() << " 0\n";
-  for(const P3& v : s.V) out << v[0] << " " << v[1] << " " << v[2] << "\n";
-  for(const Tri& t : s.T) out << "3 " << t[0] << " " << t[1] << " " << t[2] << "\n";
-  return p.string();
-}
+std::string write_text(const std::string& name, const std::string& content) { return write_file(folder / name, content); }
+std::string write_off(const std::string& name, const Soup& s) { return write_text(name, off_text(s)); }
+std::string write_obj(const std::string& name, const Soup& s) { return write_text(name, obj_text(s)); }
 
-std::string write_obj(const std::string& name, const Soup& s)
-{
-  const fs::path p = tmp_dir / name;
-  std::ofstream out(p);
-  out.precision(17);
-  for(const P3& v : s.V) out << "v " << v[0] << " " << v[1] << " " << v[2] << "\n";
-  for(const Tri& t : s.T) out << "f " << t[0] + 1 << " " << t[1] + 1 << " " << t[2] + 1 << "\n";
-  return p.string();
-}
-
-std::string write_text(const std::string& name, const std::string& content)
-{
-  const fs::path p = tmp_dir / name;
-  std::ofstream(p) << content;
-  return p.string();
-}
-
-std::string read_text(const fs::path& p)
-{
-  std::ifstream in(p);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-struct Result { int code = -1; std::string out, err; };
+std::string read_text(const fs::path& p) { return read_file(p.string()); }
 
 /// Runs `dem ARGS`, capturing stdout and stderr.
-Result dem(const std::string& args)
-{
-  const fs::path out = tmp_dir / "stdout.txt", err = tmp_dir / "stderr.txt";
-  const std::string cmd = std::string("\"") + DEM_CLI + "\" " + args + " > \"" + out.string() + "\" 2> \"" +
-                          err.string() + "\"";
-  const int status = std::system(cmd.c_str());
-  Result r;
-  r.code = (status != -1 && WIFEXITED(status)) ? WEXITSTATUS(status) : -1;
-  r.out = read_text(out);
-  r.err = read_text(err);
-  return r;
-}
-
-bool contains(const std::string& s, const std::string& sub) { return s.find(sub) != std::string::npos; }
-
-bool expect(const Result& r, int code, const std::string& what, const std::string& message = "")
-{
-  bool ok = check(r.code == code, what + ": exit " + std::to_string(r.code) + ", expected " + std::to_string(code) +
-                                      " (stderr: " + r.err + ")");
-  if(!message.empty())
-    ok = check(contains(r.err, message), what + ": stderr should mention \"" + message + "\", got: " + r.err) && ok;
-  return ok;
-}
-
-const char* metric_keys[] = {"method", "vertices", "faces", "seconds", "iterations", "converged", "fold_overs",
-                             "mean_abs_mu", "sd_abs_mu", "mean_abs_darea", "sd_abs_darea", "density_var_initial",
-                             "density_var_final", "face_density_var_initial", "face_density_var_final",
-                             "landmark_error", "radii"};
-
-/// Parses the metrics file and checks every key of the contract; returns the tree.
-boost::property_tree::ptree check_metrics(const std::string& file, const std::string& method, std::size_t nv,
-                                          std::size_t nf)
-{
-  boost::property_tree::ptree pt;
-  try {
-    boost::property_tree::read_json(file, pt);
-  } catch(const std::exception& e) {
-    check(false, "metrics " + file + " is not valid JSON: " + e.what());
-    return pt;
-  }
-  for(const char* k : metric_keys) check(pt.count(k) == 1, std::string("metrics key ") + k + " missing");
-  check(pt.get<std::string>("method", "") == method, "metrics method");
-  check(pt.get<std::size_t>("vertices", 0) == nv, "metrics vertices");
-  check(pt.get<std::size_t>("faces", 0) == nf, "metrics faces");
-  check(pt.get<std::size_t>("fold_overs", 1) == 0, "metrics fold_overs == 0");
-  check(pt.get<double>("seconds", -1) >= 0, "metrics seconds");
-  const double mu = pt.get<double>("mean_abs_mu", -1);
-  check(mu >= 0 && mu < 1, "metrics mean_abs_mu in [0,1)");
-  check(pt.get<double>("mean_abs_darea", -1) >= 0, "metrics mean_abs_darea");
-  check(pt.get<double>("density_var_final", -1) >= 0, "metrics density_var_final");
-  return pt;
-}
-
-/// The output has the input's faces, in order, and its vertices on the domain.
-void check_output(const std::string& file, const Soup& in, double (*domain_residual)(const Point&),
-                  const std::string& what)
-{
-  std::vector<Point> points;
-  std::vector<std::vector<std::size_t>> polygons;
-  if(!check(CGAL::IO::read_polygon_soup(file, points, polygons), what + ": output readable")) return;
-  check(points.size() == in.V.size(), what + ": same number of vertices");
-  bool same = polygons.size() == in.T.size();
-  for(std::size_t k = 0; same && k < polygons.size(); ++k)
-    same = polygons[k].size() == 3 && int(polygons[k][0]) == in.T[k][0] && int(polygons[k][1]) == in.T[k][1] &&
-           int(polygons[k][2]) == in.T[k][2];
-  check(same, what + ": same connectivity");
-  double worst = 0;
-  for(const Point& p : points) worst = std::max(worst, domain_residual(p));
-  check(worst < 1e-9, what + ": vertices on the domain (worst residual " + std::to_string(worst) + ")");
-}
-
-double torus_3_1_residual(const Point& p)
-{
-  const double x = CGAL::to_double(p.x()), y = CGAL::to_double(p.y()), z = CGAL::to_double(p.z());
-  const double d = std::sqrt(x * x + y * y) - 3;
-  return std::abs(std::sqrt(d * d + z * z) - 1);
-}
-
-double ellipsoid_2_1_1_residual(const Point& p)
-{
-  const double x = CGAL::to_double(p.x()) / 2, y = CGAL::to_double(p.y()), z = CGAL::to_double(p.z());
-  return std::abs(std::sqrt(x * x + y * y + z * z) - 1);
-}
+Result dem(const std::string& args) { return run_dem(folder, args); }
 
 double unit_sphere_residual(const Point& p) { return std::abs(std::sqrt(CGAL::to_double(p.x() * p.x() + p.y() * p.y() + p.z() * p.z())) - 1); }
 
@@ -231,8 +89,6 @@ double unit_sphere_residual(const Point& p) { return std::abs(std::sqrt(CGAL::to
 
 int main()
 {
-  tmp_dir = fs::temp_directory_path() / ("dem_test_cli_" + std::to_string(::getpid()));
-  fs::create_directories(tmp_dir);
 
   const Soup sphere = icosphere(3); // 642 vertices, 1280 faces
   const std::string sphere_off = write_off("sphere.off", sphere);
@@ -394,8 +250,7 @@ int main()
     expect(dem("tdem \"" + ring_off + "\" --torus 1 3"), 3, "R < r", "R > r");
   }
 
-  fs::remove_all(tmp_dir);
-  if(failures) { std::cerr << failures << " failure(s)\n"; return 1; }
+  if(failures()) { std::cerr << failures() << " failure(s)\n"; return 1; }
   std::cout << "test_cli: all checks passed\n";
   return 0;
 }

@@ -48,7 +48,7 @@ std::string failure_description(const DEM::Map_report& r)
   if(r.fold_overs > 0)
     return "the map has " + std::to_string(r.fold_overs) + " fold-over(s) (exact count; " +
            DEM::to_string(r.termination) + ", " + std::to_string(r.iterations) + " iteration(s))";
-  if(!r.fallback.empty() && !r.converged())
+  if(r.landmarks_given_up)
     return "no landmark-aligned map without fold-overs was found; the fallback gives up the landmarks (" +
            r.fallback + ")";
   char buffer[256];
@@ -170,13 +170,9 @@ int map_command(const std::vector<std::string>& args)
   }
   std::cout << summary_line(m) << std::endl;
 
-  // A landmark-aligned map whose fallback gave up the alignment (FEQCM's folded
-  // output replaced by the spherical map scaled to the ellipsoid) and did not
-  // converge is not the map asked for: a failure, not a warning.
-  const bool landmarks_given_up = opt.method == Method::ELLIPSOIDAL_QUASICONFORMAL && !run.report.fallback.empty() &&
-                                  !run.report.converged();
+  // a landmark map whose fallback gave up the landmarks is not the map asked for
   const bool failed = run.report.fold_overs > 0 || run.report.termination == DEM::Termination::STALLED ||
-                      landmarks_given_up;
+                      run.report.landmarks_given_up;
   // a result the user must not take for the method's usual one says so on stderr
   if(!run.report.fallback.empty())
     std::cerr << "dem: warning: " << method_name(opt.method) << " used a fallback: " << run.report.fallback

@@ -107,6 +107,12 @@ struct Map_report
   /// (`fold_overs` says whether it is bijective) but may be of lower quality
   /// than the method's usual result.
   std::string fallback;
+  /// `true` when a landmark method returned a fold-free map only by giving up
+  /// its landmark constraints (the quasi-conformal map kept folds and the
+  /// fold-free fallback that replaced it does not follow the landmarks): the
+  /// output is bijective but it is not the landmark-aligned map asked for, and
+  /// callers must treat the run as failed
+  bool landmarks_given_up = false;
   /// a human-readable note on anything unusual (e.g. why a run stalled)
   std::string message;
 

@@ -357,7 +357,8 @@ std::array<double, 3> optimal_ellipsoid_radii(const TriangleMesh& tm,
 /// \pre `landmark_weight` is positive and finite (checked)
 /// \returns a `Map_report` with `landmark_error` = the mean distance between mapped landmarks and their
 /// targets, `radii`, `iterations` = passes of the bijectivity loop, `termination` = `MAXIMUM_ITERATIONS`
-/// if the loop did not remove every planar fold, and `fold_overs` = the exact count on the output
+/// if the loop did not remove every planar fold, `landmarks_given_up` when the fold-free output had to
+/// drop the landmark constraints (a failure of the method), and `fold_overs` = the exact count on the output
 /// \throws Invalid_input for an invalid mesh, radii or pole vertices, an empty landmark set, a landmark
 /// vertex not in the mesh or listed twice, a target not on the ellipsoid, or a non-positive weight
 /// \throws Algorithm_failure as `ellipsoidal_conformal_map()`
@@ -431,6 +432,9 @@ Map_report ellipsoidal_quasiconformal_map(const TriangleMesh& tm, const Landmark
   report.iterations = res.passes;
   report.termination = res.planar_bijective ? Termination::CONVERGED : Termination::MAXIMUM_ITERATIONS;
   if(!res.planar_bijective) report.message = "the bijectivity loop did not remove every fold of the planar map";
+  // the loop left folds, and the repair replaced the map by the fold-free
+  // spherical start, which knows nothing of the landmarks
+  report.landmarks_given_up = !res.planar_bijective && !report.fallback.empty();
   double err = 0;
   for(std::size_t k = 0; k < idx.size(); ++k) err += (internal::row_vector3(res.f, idx[k]) - q[k]).norm();
   report.landmark_error = err / double(idx.size());

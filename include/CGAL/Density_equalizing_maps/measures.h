@@ -72,11 +72,7 @@ template <class P> struct Has_z<P, std::void_t<decltype(std::declval<const P&>()
 template <class TriangleMesh, class NamedParameters>
 Mesh_arrays<TriangleMesh> measure_arrays(const TriangleMesh& tm, const NamedParameters& np)
 {
-  using CGAL::parameters::choose_parameter;
-  using CGAL::parameters::get_parameter;
-  auto vpm = choose_parameter(get_parameter(np, internal_np::vertex_point), get_const_property_map(vertex_point, tm));
-  auto vim = CGAL::get_initialized_vertex_index_map(tm, np);
-  Mesh_arrays<TriangleMesh> a = to_arrays(tm, vpm, vim);
+  Mesh_arrays<TriangleMesh> a = unvalidated_arrays(tm, np);
   normalize_scale(a); // the measures are scale-invariant; lengths near 1e+-100 would overflow
   return a;
 }

@@ -39,12 +39,8 @@ read_landmark_pairs(std::istream& in, std::size_t source_vertices = 0, std::size
   std::vector<std::pair<std::size_t, std::size_t> > result;
   std::map<std::size_t, std::size_t> line_of_source, line_of_target;
   std::map<std::pair<std::size_t, std::size_t>, std::size_t> line_of_pair;
-  std::string line;
-  std::size_t n = 0;
-  while(std::getline(in, line)) {
-    ++n;
-    const std::vector<std::string> t = internal::tokens_of(line);
-    if(t.empty()) continue;
+  internal::for_each_data_line(in, source, [&](std::size_t n, const std::string& line,
+                                               const std::vector<std::string>& t) {
     std::size_t i = 0, j = 0;
     if(t.size() != 2 || !internal::parse_index(t[0], i) || !internal::parse_index(t[1], j))
       throw Invalid_input(internal::where(source, n) + "expected \"source_vertex target_vertex\" (two indices), got \"" +
@@ -71,8 +67,7 @@ read_landmark_pairs(std::istream& in, std::size_t source_vertices = 0, std::size
     line_of_source.emplace(i, n);
     line_of_target.emplace(j, n);
     result.emplace_back(i, j);
-  }
-  if(in.bad()) throw Invalid_input(source + ": read error");
+  });
   if(result.size() < 3)
     throw Invalid_input(source + ": " + std::to_string(result.size()) +
                         " landmark pair(s); registration needs at least 3");

@@ -94,6 +94,23 @@ void read_from_file(const std::string& filename, Reader reader)
   reader(in, filename);
 }
 
+/// Calls `visit(line_number, line, tokens)` for every line of `in` that has
+/// tokens once its comment is stripped (line numbers 1-based, counting the
+/// blank and comment lines), then fails on a read error: the loop that every
+/// sidecar reader shares.
+template <class Visitor>
+void for_each_data_line(std::istream& in, const std::string& source, Visitor visit)
+{
+  std::string line;
+  std::size_t n = 0;
+  while(std::getline(in, line)) {
+    ++n;
+    const std::vector<std::string> t = tokens_of(line);
+    if(!t.empty()) visit(n, line, t);
+  }
+  if(in.bad()) throw Invalid_input(source + ": read error");
+}
+
 } // namespace internal
 
 /// \ingroup PkgDensityEqualizingMapsIO
@@ -110,20 +127,15 @@ inline std::vector<double> read_face_values(std::istream& in, std::size_t expect
 {
   std::vector<double> values;
   if(expected_count > 0) values.reserve(expected_count);
-  std::string line;
-  std::size_t n = 0;
-  while(std::getline(in, line)) {
-    ++n;
-    const std::vector<std::string> t = internal::tokens_of(line);
-    if(t.empty()) continue;
+  internal::for_each_data_line(in, source, [&](std::size_t n, const std::string& line,
+                                               const std::vector<std::string>& t) {
     double v = 0;
     if(t.size() != 1 || !internal::parse_double(t[0], v))
       throw Invalid_input(internal::where(source, n) + "expected one number, got \"" + line + "\"");
     if(!std::isfinite(v) || !(v > 0))
       throw Invalid_input(internal::where(source, n) + "value " + t[0] + " is not a positive finite number");
     values.push_back(v);
-  }
-  if(in.bad()) throw Invalid_input(source + ": read error");
+  });
   if(expected_count > 0 && values.size() != expected_count)
     throw Invalid_input(source + ": " + std::to_string(values.size()) + " values for " +
                         std::to_string(expected_count) + " faces (one value per face is needed)");
@@ -157,12 +169,8 @@ inline std::vector<Indexed_landmark> read_landmarks(std::istream& in, std::size_
 {
   std::vector<Indexed_landmark> result;
   std::map<std::size_t, std::size_t> seen; // vertex -> line
-  std::string line;
-  std::size_t n = 0;
-  while(std::getline(in, line)) {
-    ++n;
-    const std::vector<std::string> t = internal::tokens_of(line);
-    if(t.empty()) continue;
+  internal::for_each_data_line(in, source, [&](std::size_t n, const std::string& line,
+                                               const std::vector<std::string>& t) {
     Indexed_landmark l;
     l.line = n;
     bool ok = t.size() == 4 && internal::parse_index(t[0], l.vertex);
@@ -181,8 +189,7 @@ inline std::vector<Indexed_landmark> read_landmarks(std::istream& in, std::size_
                           " already has a landmark (line " + std::to_string(it->second) + ")");
     seen.emplace(l.vertex, n);
     result.push_back(l);
-  }
-  if(in.bad()) throw Invalid_input(source + ": read error");
+  });
   if(result.empty()) throw Invalid_input(source + ": no landmark");
   return result;
 }
@@ -213,12 +220,8 @@ inline std::vector<std::pair<std::size_t, std::size_t>>
 read_vertex_pairs(std::istream& in, std::size_t number_of_vertices = 0, const std::string& source = "cut edges")
 {
   std::vector<std::pair<std::size_t, std::size_t>> result;
-  std::string line;
-  std::size_t n = 0;
-  while(std::getline(in, line)) {
-    ++n;
-    const std::vector<std::string> t = internal::tokens_of(line);
-    if(t.empty()) continue;
+  internal::for_each_data_line(in, source, [&](std::size_t n, const std::string& line,
+                                               const std::vector<std::string>& t) {
     std::size_t i = 0, j = 0;
     if(t.size() != 2 || !internal::parse_index(t[0], i) || !internal::parse_index(t[1], j))
       throw Invalid_input(internal::where(source, n) + "expected two vertex indices, got \"" + line + "\"");
@@ -227,8 +230,7 @@ read_vertex_pairs(std::istream& in, std::size_t number_of_vertices = 0, const st
                           " out of range (the mesh has " + std::to_string(number_of_vertices) + " vertices)");
     if(i == j) throw Invalid_input(internal::where(source, n) + "an edge needs two distinct vertices");
     result.emplace_back(i, j);
-  }
-  if(in.bad()) throw Invalid_input(source + ": read error");
+  });
   if(result.empty()) throw Invalid_input(source + ": no vertex pair");
   return result;
 }
@@ -258,12 +260,8 @@ inline std::vector<std::pair<std::size_t, std::size_t>> read_vertex_pairs(const 
 inline std::map<std::string, double> read_numeric_parameters(std::istream& in, const std::string& source = "parameters")
 {
   std::map<std::string, double> result;
-  std::string line;
-  std::size_t n = 0;
-  while(std::getline(in, line)) {
-    ++n;
-    std::string body = line.substr(0, line.find('#'));
-    if(internal::tokens_of(body).empty()) continue;
+  internal::for_each_data_line(in, source, [&](std::size_t n, const std::string& line, const std::vector<std::string>&) {
+    const std::string body = line.substr(0, line.find('#'));
     const std::size_t eq = body.find('=');
     if(eq == std::string::npos)
       throw Invalid_input(internal::where(source, n) + "expected key=value, got \"" + line + "\"");
@@ -274,8 +272,7 @@ inline std::map<std::string, double> read_numeric_parameters(std::istream& in, c
       throw Invalid_input(internal::where(source, n) + "expected key=number, got \"" + line + "\"");
     if(!result.emplace(k[0], value).second)
       throw Invalid_input(internal::where(source, n) + "key " + k[0] + " given twice");
-  }
-  if(in.bad()) throw Invalid_input(source + ": read error");
+  });
   return result;
 }
 

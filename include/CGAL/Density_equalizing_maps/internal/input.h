@@ -21,16 +21,25 @@ namespace CGAL {
 namespace Density_equalizing_maps {
 namespace internal {
 
+/// The arrays of `tm` through the `vertex_point_map` and `vertex_index_map` of
+/// `np` (CGAL's defaults otherwise), as they are: no validation, no scaling.
+/// The callers that need no closed surface (measures, point transfer, the
+/// globe of a cartogram) check what they need themselves.
+template <class TriangleMesh, class NamedParameters>
+Mesh_arrays<TriangleMesh> unvalidated_arrays(const TriangleMesh& tm, const NamedParameters& np)
+{
+  using CGAL::parameters::choose_parameter;
+  using CGAL::parameters::get_parameter;
+  auto vpm = choose_parameter(get_parameter(np, internal_np::vertex_point), get_const_property_map(vertex_point, tm));
+  return to_arrays(tm, vpm, CGAL::get_initialized_vertex_index_map(tm, np));
+}
+
 /// The arrays of a validated closed surface of the given Euler characteristic.
 template <class TriangleMesh, class NamedParameters>
 Mesh_arrays<TriangleMesh> closed_surface_arrays(const TriangleMesh& tm, const NamedParameters& np, long euler)
 {
-  using CGAL::parameters::choose_parameter;
-  using CGAL::parameters::get_parameter;
   begin_stage(stage_notifier_from_parameters(np), "validation");
-  auto vpm = choose_parameter(get_parameter(np, internal_np::vertex_point), get_const_property_map(vertex_point, tm));
-  auto vim = CGAL::get_initialized_vertex_index_map(tm, np);
-  Mesh_arrays<TriangleMesh> a = to_arrays(tm, vpm, vim);
+  Mesh_arrays<TriangleMesh> a = unvalidated_arrays(tm, np);
   normalize_scale(a); // before any length or area is computed, validation included
   validate_closed_surface(a.X, a.F, euler, euler == 2 ? 4 : 7);
   // The genus-0 methods build maps whose faces are oriented outward. For an
