@@ -9,6 +9,7 @@
 #include <CGAL/Density_equalizing_maps/ellipsoidal_conformal_map.h>
 #include <CGAL/Density_equalizing_maps/parameters.h>
 #include <CGAL/Density_equalizing_maps/internal/ellipsoid_domain.h>
+#include <CGAL/Density_equalizing_maps/internal/elongated_starts.h>
 #include <CGAL/Density_equalizing_maps/internal/engine_parameters.h>
 #include <CGAL/Density_equalizing_maps/internal/radii_search_flow.h>
 
@@ -33,7 +34,9 @@ constexpr double on_ellipsoid_tolerance = 1e-3;
 /// (a linear image of a bijective spherical map, hence bijective). "Better" is
 /// the one whose density (population / image area) is closer to uniform: on
 /// strongly anisotropic ellipsoids the ellipsoidal conformal map has a large
-/// area distortion and the flow from it is slow to equalize.
+/// area distortion and the flow from it is slow to equalize. An elongated
+/// surface (see elongated_starts.h) also tries axial_start() scaled by the
+/// radii, which does not crowd where both conformal maps do.
 template <class TriangleMesh, class NamedParameters>
 Matrix initial_ellipsoidal_map(const TriangleMesh& tm, const Mesh_arrays<TriangleMesh>& a,
                                const Eigen::Vector3d& radii, const Vector& population, const NamedParameters& np,
@@ -75,11 +78,32 @@ Matrix initial_ellipsoidal_map(const TriangleMesh& tm, const Mesh_arrays<Triangl
       ellipsoidal_conformal_map(tm, fecm, parameters::combine(np, parameters::ellipsoid_radii(r)));
     x = read_points(a, fecm);
     project_to_ellipsoid(x, radii);
-    // both candidates start from the same FLASH map: one fallback to report
+    // both conformal candidates start from the same FLASH map: one fallback to report
     fallbacks.used_tutte_fallback = flash.tutte;
     fallbacks.add_fallback(flash.fallback.empty() ? "" : "initial map: " + flash.fallback);
-    if(x.allFinite() && count_inverted_faces_about_center(x, a.F) == 0 &&
-       density_error(x) <= density_error(scaled_sphere)) {
+    auto usable = [&](const Matrix& y) {
+      return y.rows() > 0 && y.allFinite() && count_inverted_faces_about_center(y, a.F) == 0;
+    };
+    const double fecm_error = usable(x) ? density_error(x) : std::numeric_limits<double>::infinity();
+    const double scaled_error = usable(scaled_sphere) ? density_error(scaled_sphere)
+                                                      : std::numeric_limits<double>::infinity();
+    // an elongated surface: the axial start along the axis of the largest radius, scaled by the radii
+    const Principal_frame frame = principal_frame(a.X, &radii);
+    if(frame.extent.maxCoeff() >= elongation_of_crowding * frame.extent.minCoeff()) {
+      int axis = 0;
+      radii.maxCoeff(&axis);
+      const Matrix axial = axial_start(a.X, a.F, frame, axis, radii);
+      if(axial.rows() > 0) {
+        Matrix y = Ellipsoid_domain::from_unit_sphere(axial, radii);
+        const double axial_error = usable(y) ? density_error(y) : std::numeric_limits<double>::infinity();
+        if(axial_error < std::min(fecm_error, scaled_error)) {
+          note = "started from the map along the principal axis (an elongated surface: closer to uniform density "
+                 "than both conformal maps). ";
+          return y;
+        }
+      }
+    }
+    if(fecm_error <= scaled_error && std::isfinite(fecm_error)) {
       fallbacks.repairs += conformal.repairs;
       return x;
     }

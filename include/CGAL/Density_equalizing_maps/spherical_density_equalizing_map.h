@@ -8,9 +8,13 @@
 #include <CGAL/Density_equalizing_maps/Map_report.h>
 #include <CGAL/Density_equalizing_maps/parameters.h>
 #include <CGAL/Density_equalizing_maps/internal/ellipsoid_domain.h>
+#include <CGAL/Density_equalizing_maps/internal/elongated_starts.h>
 #include <CGAL/Density_equalizing_maps/internal/engine_parameters.h>
 #include <CGAL/Density_equalizing_maps/internal/landmark_flow.h>
 #include <CGAL/Density_equalizing_maps/internal/spherical_conformal.h>
+
+#include <limits>
+#include <sstream>
 
 namespace CGAL {
 namespace Density_equalizing_maps {
@@ -20,10 +24,14 @@ namespace internal {
 /// the center, bijective; `Invalid_input` otherwise), else the spherical
 /// conformal map with Moebius area correction (paper 001), which is bijective
 /// in exact arithmetic: if its exact fold-over count is not 0 the computation
-/// failed (`Algorithm_failure`), the input is not at fault.
+/// failed (`Algorithm_failure`), the input is not at fault. Given the
+/// `population` (SDEM), an elongated surface also tries axial_start() and
+/// ellipsoidal_start() and starts from whichever map has
+/// the image density closer to uniform (mean_abs_log_density()); the report's
+/// message says when the ellipsoidal start was taken.
 template <class TriangleMesh, class NamedParameters>
 Matrix initial_spherical_map(const Mesh_arrays<TriangleMesh>& a, const NamedParameters& np, const Spd_solver& solver,
-                             Map_report& report)
+                             Map_report& report, const Vector* population = nullptr)
 {
   using CGAL::parameters::get_parameter;
   using CGAL::parameters::is_default_parameter;
@@ -44,6 +52,29 @@ Matrix initial_spherical_map(const Mesh_arrays<TriangleMesh>& a, const NamedPara
     begin_stage(stage, "Moebius area correction");
     S = mobius_area_correction(a.X, a.F, flash.S);
     const std::size_t folds = count_inverted_faces_about_center(S, a.F);
+    const Principal_frame frame = principal_frame(a.X);
+    if(population && frame.extent.maxCoeff() >= elongation_of_crowding * frame.extent.minCoeff()) {
+      begin_stage(stage, "starting maps of an elongated surface");
+      const double conformal = folds > 0 ? std::numeric_limits<double>::infinity()
+                                         : mean_abs_log_density(*population, face_areas(S, a.F));
+      double best = conformal;
+      auto consider = [&](Matrix candidate, const char* name) {
+        if(candidate.rows() == 0) return;
+        const double spread = mean_abs_log_density(*population, face_areas(candidate, a.F));
+        if(!(spread < best)) return;
+        std::ostringstream note;
+        note << "initial map: " << name << " (mean |log density| " << spread << ", against ";
+        if(folds > 0) note << "a Moebius-corrected conformal map with " << folds << " fold-overs)";
+        else note << conformal << " for the Moebius-corrected conformal map)";
+        report.message = note.str();
+        best = spread;
+        S = std::move(candidate);
+      };
+      consider(axial_start(a.X, a.F, frame), "along the principal axis, latitudes by area");
+      consider(ellipsoidal_start(a.X, a.F, frame, flash, solver),
+               "the conformal map onto the bounding-box ellipsoid scaled onto the sphere");
+      if(best < conformal) return S;
+    }
     if(folds > 0)
       throw Algorithm_failure("the computed initial spherical map (conformal map with Moebius area correction) is "
                               "not bijective: " + std::to_string(folds) + " fold-overs (exact count); " +
@@ -154,7 +185,7 @@ Map_report spherical_density_equalizing_map(const TriangleMesh& tm, VertexPointO
   const auto diffusion_solver = internal::diffusion_solver_from_parameters(np);
 
   Map_report report;
-  internal::Matrix x = internal::initial_spherical_map(a, np, *solver, report);
+  internal::Matrix x = internal::initial_spherical_map(a, np, *solver, report, &population);
   internal::Ellipsoid_domain sphere(a.F, x, Eigen::Vector3d::Ones(), truncation, *solver);
   internal::Density_flow flow;
   const internal::Engine_result r = internal::run_density_equalization(sphere, flow, x, population, options, *diffusion_solver);

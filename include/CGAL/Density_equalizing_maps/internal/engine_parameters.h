@@ -60,7 +60,8 @@ inline void fill_report(const Engine_result& r, Map_report& report)
   report.final_error = r.final_error;
   report.repairs += r.steps.repairs; // after those of the start (a fallback repaired)
   report.step_halvings = r.steps.halvings;
-  report.message = r.message;
+  // after what the start said (e.g. which initial map was taken)
+  if(!r.message.empty()) report.message += (report.message.empty() ? "" : "; ") + r.message;
 }
 
 /// Reads landmarks (vertex, target point) into indices and a target matrix.
