@@ -83,6 +83,75 @@ std::string read_text(const fs::path& p) { return read_file(p.string()); }
 /// Runs `dem ARGS`, capturing stdout and stderr.
 Result dem(const std::string& args) { return run_dem(folder, args); }
 
+bool expect(const Result& r, int code, const std::string& what, const std::string& message = "")
+{
+  bool ok = check(r.code == code, what + ": exit " + std::to_string(r.code) + ", expected " + std::to_string(code) +
+                                      " (stderr: " + r.err + ")");
+  if(!message.empty())
+    ok = check(contains(r.err, message), what + ": stderr should mention \"" + message + "\", got: " + r.err) && ok;
+  return ok;
+}
+
+const char* metric_keys[] = {"method", "vertices", "faces", "seconds", "iterations", "converged", "fold_overs",
+                             "mean_abs_mu", "sd_abs_mu", "mean_abs_darea", "sd_abs_darea", "density_var_initial",
+                             "density_var_final", "face_density_var_initial", "face_density_var_final",
+                             "landmark_error", "radii"};
+
+/// Parses the metrics file and checks every key of the contract; returns the tree.
+boost::property_tree::ptree check_metrics(const std::string& file, const std::string& method, std::size_t nv,
+                                          std::size_t nf)
+{
+  boost::property_tree::ptree pt;
+  try {
+    boost::property_tree::read_json(file, pt);
+  } catch(const std::exception& e) {
+    check(false, "metrics " + file + " is not valid JSON: " + e.what());
+    return pt;
+  }
+  for(const char* k : metric_keys) check(pt.count(k) == 1, std::string("metrics key ") + k + " missing");
+  check(pt.get<std::string>("method", "") == method, "metrics method");
+  check(pt.get<std::size_t>("vertices", 0) == nv, "metrics vertices");
+  check(pt.get<std::size_t>("faces", 0) == nf, "metrics faces");
+  check(pt.get<std::size_t>("fold_overs", 1) == 0, "metrics fold_overs == 0");
+  check(pt.get<double>("seconds", -1) >= 0, "metrics seconds");
+  const double mu = pt.get<double>("mean_abs_mu", -1);
+  check(mu >= 0 && mu < 1, "metrics mean_abs_mu in [0,1)");
+  check(pt.get<double>("mean_abs_darea", -1) >= 0, "metrics mean_abs_darea");
+  check(pt.get<double>("density_var_final", -1) >= 0, "metrics density_var_final");
+  return pt;
+}
+
+/// The output has the input's faces, in order, and its vertices on the domain.
+void check_output(const std::string& file, const Soup& in, double (*domain_residual)(const Point&),
+                  const std::string& what)
+{
+  std::vector<Point> points;
+  std::vector<std::vector<std::size_t>> polygons;
+  if(!check(CGAL::IO::read_polygon_soup(file, points, polygons), what + ": output readable")) return;
+  check(points.size() == in.V.size(), what + ": same number of vertices");
+  bool same = polygons.size() == in.T.size();
+  for(std::size_t k = 0; same && k < polygons.size(); ++k)
+    same = polygons[k].size() == 3 && int(polygons[k][0]) == in.T[k][0] && int(polygons[k][1]) == in.T[k][1] &&
+           int(polygons[k][2]) == in.T[k][2];
+  check(same, what + ": same connectivity");
+  double worst = 0;
+  for(const Point& p : points) worst = std::max(worst, domain_residual(p));
+  check(worst < 1e-9, what + ": vertices on the domain (worst residual " + std::to_string(worst) + ")");
+}
+
+double torus_3_1_residual(const Point& p)
+{
+  const double x = CGAL::to_double(p.x()), y = CGAL::to_double(p.y()), z = CGAL::to_double(p.z());
+  const double d = std::sqrt(x * x + y * y) - 3;
+  return std::abs(std::sqrt(d * d + z * z) - 1);
+}
+
+double ellipsoid_2_1_1_residual(const Point& p)
+{
+  const double x = CGAL::to_double(p.x()) / 2, y = CGAL::to_double(p.y()), z = CGAL::to_double(p.z());
+  return std::abs(std::sqrt(x * x + y * y + z * z) - 1);
+}
+
 double unit_sphere_residual(const Point& p) { return std::abs(std::sqrt(CGAL::to_double(p.x() * p.x() + p.y() * p.y() + p.z() * p.z())) - 1); }
 
 } // namespace
