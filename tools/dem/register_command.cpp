@@ -9,7 +9,9 @@
 // the contract's keys for the registration map (source surface -> registered points:
 // mean_abs_mu, mean_abs_darea, fold_overs = both maps' exact counts), landmark_error_3d
 // {mean, max, relative_mean, relative_max} (relative = divided by the target's bounding-box
-// diagonal), and both underlying maps' full metrics under source_map and target_map.
+// diagonal), both underlying maps' full metrics under source_map and target_map, and on the
+// sphere route landmark_correction (the landmark warps of the starting and the final maps:
+// largest sphere distance to the common positions before and after, exact or not).
 
 #include "commands.h"
 #include "maps.h"
@@ -197,6 +199,16 @@ int register_command(const std::vector<std::string>& args)
                                     ", \"relative_mean\": " + json_number(rep.landmark_error_mean / diag) +
                                     ", \"relative_max\": " + json_number(rep.landmark_error_max / diag) + "}");
   m.add("target_bbox_diagonal", diag);
+  if(ra.via == Method::LSDEM) {
+    const auto correction = [](const DEM::Landmark_correction& c) {
+      return "{\"error_before\": " + json_number(c.error_before) + ", \"error_after\": " + json_number(c.error_after) +
+             ", \"exact\": " + (c.exact ? "true" : "false") + "}";
+    };
+    m.add_json("landmark_correction",
+               "{\"source_start\": " + correction(rep.source_start_correction) + ", \"target_start\": " +
+                 correction(rep.target_start_correction) + ", \"source_final\": " + correction(rep.source_correction) +
+                 ", \"target_final\": " + correction(rep.target_correction) + "}");
+  }
   Options map_opt = opt;
   map_opt.method = ra.via;
   m.add_json("source_map", underlying_map_json(src, map_opt, rep.source_map, rep.source_domain_points, ls, rep.landmark_positions));

@@ -10,6 +10,7 @@
 #include <CGAL/Density_equalizing_maps/parameters.h>
 #include <CGAL/Density_equalizing_maps/point_transfer.h>
 #include <CGAL/Density_equalizing_maps/spherical_density_equalizing_map.h>
+#include <CGAL/Density_equalizing_maps/internal/landmark_warp.h>
 #include <CGAL/Density_equalizing_maps/internal/measures.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -67,6 +68,21 @@ CGAL::Named_function_parameters<T, internal_np::target_location_map_t> target_lo
 } // namespace parameters
 
 /// \ingroup PkgDensityEqualizingMapsRegistration
+/// The landmark correction of one map of `register_surfaces()` (sphere route): a smooth warp of
+/// the sphere that carries the map's landmark images onto the common landmark positions.
+struct Landmark_correction
+{
+  /// the largest distance, on the unit sphere, between a landmark's image and its common position
+  /// before the correction
+  double error_before = 0;
+  /// the same after the correction (0 up to rounding if `exact`)
+  double error_after = 0;
+  /// `true` if every landmark reached its common position; `false` if the warp would have folded the
+  /// map, in which case the map was moved only as far as it stays fold-free (possibly not at all)
+  bool exact = false;
+};
+
+/// \ingroup PkgDensityEqualizingMapsRegistration
 /// What `register_surfaces()` computed.
 struct Registration_report
 {
@@ -77,6 +93,10 @@ struct Registration_report
   std::vector<std::array<double, 3> > landmark_positions;
   /// the radii of the ellipsoid (ellipsoid route), empty on the sphere
   std::vector<double> radii;
+  /// sphere route: the correction of the source's and the target's conformal starting maps (landmarks
+  /// moved onto the common positions before LSDEM), then of their LSDEM maps (the landmarks that LSDEM
+  /// left off their positions moved back onto them); not applied on the ellipsoid route (all `exact` false)
+  Landmark_correction source_start_correction, target_start_correction, source_correction, target_correction;
   /// mean and largest distance between a registered source landmark and its target landmark
   double landmark_error_mean = 0, landmark_error_max = 0;
   /// the length of the diagonal of the target's bounding box (divide the errors by it for relative values)
@@ -231,6 +251,19 @@ auto target_map_parameters(const NamedParameters& np, const Base& base)
     return base;
 }
 
+/// Moves the landmarks of the spherical map Y onto their common positions by a smooth,
+/// fold-free warp of the sphere (`warp_landmarks_onto_targets()`).
+inline Landmark_correction correct_landmarks(Matrix& Y, const Index_matrix& F, const std::vector<Eigen::Index>& l,
+                                             const Matrix& common)
+{
+  const Landmark_warp_result w = warp_landmarks_onto_targets(Y, F, l, common);
+  Landmark_correction c;
+  c.error_before = w.error_before;
+  c.error_after = w.error_after;
+  c.exact = w.exact;
+  return c;
+}
+
 template <class Map_report_type>
 void refuse_folded(const Map_report_type& r, const char* which)
 {
@@ -271,6 +304,18 @@ void refuse_folded(const Map_report_type& r, const char* which)
 /// Averaging the two aligned images moves each landmark half as far in each map as taking
 /// either surface's images as the reference would move it in the other, which keeps both
 /// maps close to conformal.
+///
+/// **Landmark correction (sphere route).** Each conformal starting map is first moved by a
+/// smooth warp of the sphere that carries its landmark images exactly onto the common
+/// positions (a Gaussian interpolation of the landmark displacements, close to the identity;
+/// `Landmark_correction`), so that LSDEM starts with its landmarks in place and its landmark
+/// term only has to hold them. LSDEM's fold-over repairs can still move landmark vertices
+/// off their positions (by up to 0.01 on the unit sphere on maxplanck); the same warp then
+/// moves each final map's landmarks back. Each warp is applied only if the warped map passes
+/// the exact fold-over test (otherwise half, a quarter, an eighth of it, and the report says
+/// that the correction is not exact), so both maps used for the correspondence are fold-free:
+/// `source_map.fold_overs` and `target_map.fold_overs` are the exact counts of the maps after
+/// the correction.
 ///
 /// \tparam SourceMesh, TargetMesh models of `FaceListGraph` (they may differ)
 /// \tparam LandmarkPairs a range of `std::pair<source vertex_descriptor, target vertex_descriptor>`
@@ -369,11 +414,18 @@ Registration_report register_surfaces(const SourceMesh& source, const TargetMesh
   I::Row_point_maps<TargetMesh> target_image(at.vertices.size());
   I::Matrix common;
   if(route == Registration_domain::SPHERE) {
-    const I::Matrix Ss = I::registration_start_on_sphere(as.X, as.F, *solver, "source");
-    const I::Matrix St = I::registration_start_on_sphere(at.X, at.F, *solver, "target");
+    I::Matrix Ss = I::registration_start_on_sphere(as.X, as.F, *solver, "source");
+    I::Matrix St = I::registration_start_on_sphere(at.X, at.F, *solver, "target");
     Eigen::Matrix3d R;
     common = I::common_landmark_directions(I::rows_of(Ss, ls), I::rows_of(St, lt), R);
-    I::Row_point_maps<SourceMesh> start_s(I::Matrix(Ss * R.transpose()));
+    Ss = Ss * R.transpose();
+    // LSDEM starts with every landmark at its common position: its landmark term has only
+    // to hold them there, instead of dragging single vertices through the mapped mesh
+    // (on maxplanck that dragging folded nearly every step, and the step halvings stopped
+    // the flow with the landmarks 0.01-0.02 off; benchmark/RESULTS.md)
+    report.source_start_correction = I::correct_landmarks(Ss, as.F, ls, common);
+    report.target_start_correction = I::correct_landmarks(St, at.F, lt, common);
+    I::Row_point_maps<SourceMesh> start_s(Ss);
     I::Row_point_maps<TargetMesh> start_t(St);
     const auto shared = parameters::combine(
       parameters::density_weight(choose_parameter(get_parameter(np, internal_np::density_weight), 1.)),
@@ -387,6 +439,19 @@ Registration_report register_surfaces(const SourceMesh& source, const TargetMesh
     report.target_map = landmark_aligned_spherical_density_equalizing_map(
       target, I::landmarks_at(at, lt, common), target_image.map(tvim),
       I::target_map_parameters(np, parameters::combine(shared, parameters::initial_map(start_t.map(tvim)))));
+    I::refuse_folded(report.source_map, "source");
+    I::refuse_folded(report.target_map, "target");
+    // the fold-over repairs of the flow move landmark vertices too: put them back
+    const auto finish = [&](auto& image, const I::Index_matrix& F, const std::vector<Eigen::Index>& l,
+                            Landmark_correction& correction, Map_report& map) {
+      I::Matrix Y = image.matrix();
+      correction = I::correct_landmarks(Y, F, l, common);
+      image.points = std::decay_t<decltype(image)>(Y).points;
+      map.fold_overs = I::count_inverted_faces_about_center(Y, F); // exact, of the map that is used
+      map.landmark_error = (I::rows_of(Y, l) - common).rowwise().norm().mean();
+    };
+    finish(source_image, as.F, ls, report.source_correction, report.source_map);
+    finish(target_image, at.F, lt, report.target_correction, report.target_map);
   } else {
     Eigen::Vector3d radii;
     if constexpr(!is_default_parameter<NamedParameters, internal_np::ellipsoid_radii_t>::value) {
