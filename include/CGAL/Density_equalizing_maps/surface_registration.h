@@ -170,10 +170,10 @@ inline void check_registrable_topology(long euler_source, long euler_target)
 
 /// The Moebius area correction of a registration's starting map, searched on a sample of
 /// about 4000 faces only. `mobius_area_correction()` then polishes the sample's optimum on
-/// all faces, a fifth of the CPU time of a 25,000-face registration; here the starting map
+/// all faces, 12-18 % of the CPU time of a 25,000-face registration; here the starting map
 /// only needs the Moebius freedom fixed the same way for both surfaces (the landmark
-/// correction and LSDEM move it afterwards), and skipping the polish changed the
-/// registration errors by less than 0.05 % of the diagonal (benchmark/RESULTS.md, issue 18,
+/// correction and LSDEM move it afterwards), and skipping the polish changed the mean
+/// registration error by less than 0.01 % of the diagonal (benchmark/RESULTS.md, issue 18,
 /// second section). Never worse than no correction on all faces.
 inline Matrix sampled_mobius_area_correction(const Matrix& X, const Index_matrix& F, const Matrix& S)
 {
