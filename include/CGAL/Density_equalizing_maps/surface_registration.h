@@ -345,7 +345,7 @@ void refuse_folded(const Map_report_type& r, const char* which)
 /// positions (a Gaussian interpolation of the landmark displacements, close to the identity;
 /// `Landmark_correction`), so that LSDEM starts with its landmarks in place and its landmark
 /// term only has to hold them. LSDEM's fold-over repairs can still move landmark vertices
-/// off their positions (by up to 0.01 on the unit sphere on maxplanck); the same warp then
+/// off their positions (by 0.01-0.02 on the unit sphere on maxplanck); the same warp then
 /// moves each final map's landmarks back. Each warp is applied only if the warped map passes
 /// the exact fold-over test (otherwise half, a quarter, an eighth of it, and the report says
 /// that the correction is not exact), so both maps used for the correspondence are fold-free:
