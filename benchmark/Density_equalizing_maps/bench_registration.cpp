@@ -15,6 +15,8 @@
 //     FILE registered to a copy of itself deformed by the same map (same connectivity,
 //     so the true partner of vertex i is vertex i of the copy), 8 landmark pairs at the
 //     vertices nearest to the corners of the bounding box.
+//   bench_registration --mesh FILE --index-landmarks [repeats] ...
+//     the same with the 8 landmark pairs at the vertices i n / 8 (as test_registration --shared).
 
 #include "../../test/Density_equalizing_maps/include/dem_registration_cases.h"
 
@@ -36,10 +38,12 @@ int main(int argc, char** argv)
 {
   std::vector<std::string> args(argv + 1, argv + argc);
   std::string mesh_file;
+  bool index_landmarks = false;
   if(!args.empty() && args[0] == "--mesh") {
     if(args.size() < 2) { std::cerr << "--mesh needs a file\n"; return 2; }
     mesh_file = args[1];
     args.erase(args.begin(), args.begin() + 2);
+    if(!args.empty() && args[0] == "--index-landmarks") { index_landmarks = true; args.erase(args.begin()); }
     args.insert(args.begin(), "0");
   }
   const std::size_t faces = args.size() > 0 ? std::size_t(std::atol(args[0].c_str())) : 25000;
@@ -66,7 +70,11 @@ int main(int argc, char** argv)
     }
     Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = -lo;
     for(R::Vertex v : c.source.vertices()) { lo = lo.cwiseMin(R::to_eigen(c.source.point(v))); hi = hi.cwiseMax(R::to_eigen(c.source.point(v))); }
-    for(int i = 0; i < 8; ++i) {
+    for(int i = 0; i < 8 && index_landmarks; ++i) {
+      const R::Vertex v(R::Mesh::size_type(std::size_t(i) * c.source.number_of_vertices() / 8));
+      c.pairs.emplace_back(v, v);
+    }
+    for(int i = 0; i < 8 && !index_landmarks; ++i) {
       const Eigen::Vector3d corner(i & 1 ? hi.x() : lo.x(), i & 2 ? hi.y() : lo.y(), i & 4 ? hi.z() : lo.z());
       R::Vertex best;
       double bd = 1e300;
@@ -120,6 +128,12 @@ int main(int argc, char** argv)
             << "; iterations " << rep.source_map.iterations << " / " << rep.target_map.iterations << " ("
             << DEM::to_string(rep.source_map.termination) << " / " << DEM::to_string(rep.target_map.termination)
             << ")\nsphere landmark error: source map " << rep.source_map.landmark_error << ", target map "
-            << rep.target_map.landmark_error << "\nregistration map: mean |mu| " << rep.mean_abs_mu << ", mean |darea| " << rep.mean_abs_darea << "\n";
+            << rep.target_map.landmark_error << "\nlandmark correction (largest sphere distance before -> after, exact): start "
+            << rep.source_start_correction.error_before << " -> " << rep.source_start_correction.error_after << " "
+            << rep.source_start_correction.exact << " / " << rep.target_start_correction.error_before << " -> "
+            << rep.target_start_correction.error_after << " " << rep.target_start_correction.exact << "; final "
+            << rep.source_correction.error_before << " -> " << rep.source_correction.error_after << " "
+            << rep.source_correction.exact << " / " << rep.target_correction.error_before << " -> "
+            << rep.target_correction.error_after << " " << rep.target_correction.exact << "\nregistration map: mean |mu| " << rep.mean_abs_mu << ", mean |darea| " << rep.mean_abs_darea << "\n";
   return 0;
 }

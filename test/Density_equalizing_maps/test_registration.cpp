@@ -61,6 +61,11 @@ void accuracy_on_the_sphere()
             << rep.landmark_error_max / rep.target_diagonal << " (max), mean|mu| " << rep.mean_abs_mu << std::endl;
   check(rep.source_map.fold_overs == 0 && rep.target_map.fold_overs == 0 && rep.is_bijective(),
         "both maps are fold-free (exact counts)");
+  check(rep.source_start_correction.exact && rep.target_start_correction.exact && rep.source_correction.exact &&
+          rep.target_correction.exact,
+        "the landmark corrections are exact");
+  check(rep.source_map.landmark_error < 1e-9 && rep.target_map.landmark_error < 1e-9,
+        "both maps put the landmarks at the common positions");
   check(a.mean <= 0.01, "mean distance to the true partner <= 1 % of the target's diagonal");
   check(rep.landmark_error_max / rep.target_diagonal <= 0.005, "landmark error <= 0.5 % of the diagonal");
   check(std::abs(R::bounding_box_diagonal(c.target) - rep.target_diagonal) < 1e-9, "the report's diagonal");
@@ -82,6 +87,52 @@ void accuracy_on_the_sphere()
   check(rep.landmark_positions.size() == c.pairs.size(), "one common position per pair");
   for(const auto& p : rep.landmark_positions)
     check(std::abs(std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]) - 1) < 1e-9, "common positions on the sphere");
+}
+
+// the landmark correction of the sphere route (internal/landmark_warp.h): exact for small
+// displacements, and never folds the map it moves (exact count), whatever is asked of it
+void landmark_correction()
+{
+  namespace I = DEM::internal;
+  const dem_test::Arrays a = dem_test::icosphere_arrays(3);
+  check(I::count_inverted_faces_about_center(a.X, a.F) == 0, "correction: the icosphere is fold-free");
+  const std::vector<Eigen::Index> l = {0, 100, 200, 300, 400, 500, 600};
+  I::Matrix q(Eigen::Index(l.size()), 3);
+  for(std::size_t k = 0; k < l.size(); ++k) { // each landmark turned its own way by 0.04 rad
+    const Eigen::Vector3d axis = Eigen::Vector3d(std::cos(double(k)), std::sin(2. * k), 0.5).normalized();
+    q.row(Eigen::Index(k)) = (Eigen::AngleAxisd(0.04, axis) * I::row3(a.X, l[k])).transpose();
+  }
+  I::Matrix x = a.X;
+  const I::Landmark_warp_result small = I::warp_landmarks_onto_targets(x, a.F, l, q);
+  double worst = 0, off_sphere = 0;
+  for(std::size_t k = 0; k < l.size(); ++k) worst = (std::max)(worst, (x.row(l[k]) - q.row(Eigen::Index(k))).norm());
+  for(Eigen::Index i = 0; i < x.rows(); ++i) off_sphere = (std::max)(off_sphere, std::abs(x.row(i).norm() - 1));
+  check(small.exact && worst < 1e-12 && small.error_after < 1e-12, "correction: small displacements reached exactly");
+  check(small.error_before > 0.03, "correction: the landmarks were off before");
+  check(off_sphere < 1e-12, "correction: the points stay on the sphere");
+  check(I::count_inverted_faces_about_center(x, a.F) == 0, "correction: fold-free after a small correction");
+  // a landmark asked to move 1.2 rad away from its neighbour, which stays: the warp stretches the
+  // mesh between them (reached or not, the map stays fold-free); then two neighbours asked to
+  // swap places: each warp moves them towards each other along their edge, which no fold-free
+  // warp can take them through, so the correction stops short of the targets
+  Eigen::Index neighbour = -1;
+  for(Eigen::Index f = 0; f < a.F.rows() && neighbour < 0; ++f)
+    for(int c = 0; c < 3; ++c)
+      if(a.F(f, c) == 0) neighbour = a.F(f, (c + 1) % 3);
+  const std::vector<Eigen::Index> l2 = {0, neighbour, 300, 500};
+  I::Matrix q2(4, 3);
+  for(int k = 0; k < 4; ++k) q2.row(k) = a.X.row(l2[std::size_t(k)]);
+  q2.row(0) = (Eigen::AngleAxisd(1.2, Eigen::Vector3d(0.3, 1, 0.2).normalized()) * I::row3(a.X, 0)).transpose();
+  x = a.X;
+  const I::Landmark_warp_result large = I::warp_landmarks_onto_targets(x, a.F, l2, q2);
+  check(I::count_inverted_faces_about_center(x, a.F) == 0, "correction: fold-free after a large correction");
+  check(large.error_after <= large.error_before, "correction: a large correction does not move away");
+  q2.row(0) = a.X.row(neighbour);
+  q2.row(1) = a.X.row(0);
+  x = a.X;
+  const I::Landmark_warp_result swap = I::warp_landmarks_onto_targets(x, a.F, l2, q2);
+  check(I::count_inverted_faces_about_center(x, a.F) == 0, "correction: fold-free after an impossible correction");
+  check(!swap.exact && swap.error_after > 1e-3, "correction: an impossible correction is reported not exact");
 }
 
 void ellipsoid_route()
@@ -206,7 +257,8 @@ void command_line()
   check(r.code == 0, "dem register exits 0: " + r.err);
   const std::string json = dem_cli_test::read_file(dir / "m.json");
   for(const char* key : {"\"landmark_error_3d\"", "\"relative_mean\"", "\"relative_max\"", "\"mean_abs_mu\"",
-                         "\"mean_abs_darea\"", "\"source_map\"", "\"target_map\"", "\"fold_overs\": 0"})
+                         "\"mean_abs_darea\"", "\"source_map\"", "\"target_map\"", "\"fold_overs\": 0",
+                         "\"landmark_correction\"", "\"exact\": true"})
     check(contains(json, key), std::string("metrics have ") + key);
   R::Mesh out;
   check(CGAL::IO::read_polygon_mesh(dir / "out.off", out) && out.number_of_vertices() == c.source.number_of_vertices() &&
@@ -283,6 +335,7 @@ int main(int argc, char** argv)
   }
   bad_input_reader();
   bad_input_library();
+  landmark_correction();
   populations_pass_through();
   accuracy_on_the_sphere();
   ellipsoid_route();

@@ -9,7 +9,9 @@
 // the contract's keys for the registration map (source surface -> registered points:
 // mean_abs_mu, mean_abs_darea, fold_overs = both maps' exact counts), landmark_error_3d
 // {mean, max, relative_mean, relative_max} (relative = divided by the target's bounding-box
-// diagonal), and both underlying maps' full metrics under source_map and target_map.
+// diagonal), both underlying maps' full metrics under source_map and target_map, and on the
+// sphere route landmark_correction (the landmark warps of the starting and the final maps:
+// largest sphere distance to the common positions before and after, exact or not).
 
 #include "commands.h"
 #include "maps.h"
@@ -106,13 +108,15 @@ const char* register_usage()
          "                    [options] --output FILE --metrics FILE\n"
          "  a dense bijective correspondence SOURCE -> TARGET (two closed genus-0 meshes): both are mapped\n"
          "  onto the domain with their corresponding landmarks sent to common positions, then every source\n"
-         "  vertex is carried to the target through the target's map\n"
+         "  vertex is carried to the target through the target's map (lsdem: a smooth warp of the sphere, kept\n"
+         "  only if fold-free, puts the landmarks exactly at their common positions before and after LSDEM)\n"
          "  --landmark-pairs FILE  lines \"source_vertex target_vertex\" (0-based, '#' comments; at least 3)\n"
          "  --via M                lsdem (default, unit sphere) | ellipsoidal-quasiconformal (ellipsoid)\n"
          "  options of the map: --alpha --beta --gamma (lsdem; gamma default 20 here), --lambda (ellipsoidal-\n"
          "  quasiconformal), --time-step --tolerance --max-iterations, --quiet\n"
          "  --output FILE          the source connectivity with every vertex at its corresponding target point\n"
-         "  --metrics FILE         landmark_error_3d, mean_abs_mu, mean_abs_darea, fold_overs and both maps' keys\n"
+         "  --metrics FILE         landmark_error_3d, mean_abs_mu, mean_abs_darea, fold_overs, both maps' keys and\n"
+         "                         (lsdem) landmark_correction: each warp's largest landmark distance before/after, exact\n"
          "exit status: 0 done, 2 usage, 3 invalid input (bad pairs, genus mismatch), 4 a map folded\n"
          "example:\n"
          "  dem register face_a.off face_b.off --landmark-pairs pairs.txt --output a_on_b.off --metrics m.json\n";
@@ -197,6 +201,16 @@ int register_command(const std::vector<std::string>& args)
                                     ", \"relative_mean\": " + json_number(rep.landmark_error_mean / diag) +
                                     ", \"relative_max\": " + json_number(rep.landmark_error_max / diag) + "}");
   m.add("target_bbox_diagonal", diag);
+  if(ra.via == Method::LSDEM) {
+    const auto correction = [](const DEM::Landmark_correction& c) {
+      return "{\"error_before\": " + json_number(c.error_before) + ", \"error_after\": " + json_number(c.error_after) +
+             ", \"exact\": " + (c.exact ? "true" : "false") + "}";
+    };
+    m.add_json("landmark_correction",
+               "{\"source_start\": " + correction(rep.source_start_correction) + ", \"target_start\": " +
+                 correction(rep.target_start_correction) + ", \"source_final\": " + correction(rep.source_correction) +
+                 ", \"target_final\": " + correction(rep.target_correction) + "}");
+  }
   Options map_opt = opt;
   map_opt.method = ra.via;
   m.add_json("source_map", underlying_map_json(src, map_opt, rep.source_map, rep.source_domain_points, ls, rep.landmark_positions));

@@ -10,13 +10,16 @@
 #include <CGAL/Density_equalizing_maps/parameters.h>
 #include <CGAL/Density_equalizing_maps/point_transfer.h>
 #include <CGAL/Density_equalizing_maps/spherical_density_equalizing_map.h>
+#include <CGAL/Density_equalizing_maps/internal/landmark_warp.h>
 #include <CGAL/Density_equalizing_maps/internal/measures.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <boost/property_map/property_map.hpp>
 
 #include <array>
+#include <cmath>
 #include <cstddef>
+#include <limits>
 #include <map>
 #include <string>
 #include <utility>
@@ -67,6 +70,21 @@ CGAL::Named_function_parameters<T, internal_np::target_location_map_t> target_lo
 } // namespace parameters
 
 /// \ingroup PkgDensityEqualizingMapsRegistration
+/// The landmark correction of one map of `register_surfaces()` (sphere route): a smooth warp of
+/// the sphere that carries the map's landmark images onto the common landmark positions.
+struct Landmark_correction
+{
+  /// the largest distance, on the unit sphere, between a landmark's image and its common position
+  /// before the correction
+  double error_before = 0;
+  /// the same after the correction (0 up to rounding if `exact`)
+  double error_after = 0;
+  /// `true` if every landmark reached its common position; `false` if the warp would have folded the
+  /// map, in which case the map was moved only as far as it stays fold-free (possibly not at all)
+  bool exact = false;
+};
+
+/// \ingroup PkgDensityEqualizingMapsRegistration
 /// What `register_surfaces()` computed.
 struct Registration_report
 {
@@ -77,6 +95,10 @@ struct Registration_report
   std::vector<std::array<double, 3> > landmark_positions;
   /// the radii of the ellipsoid (ellipsoid route), empty on the sphere
   std::vector<double> radii;
+  /// sphere route: the correction of the source's and the target's conformal starting maps (landmarks
+  /// moved onto the common positions before LSDEM), then of their LSDEM maps (the landmarks that LSDEM
+  /// left off their positions moved back onto them); not applied on the ellipsoid route (all `exact` false)
+  Landmark_correction source_start_correction, target_start_correction, source_correction, target_correction;
   /// mean and largest distance between a registered source landmark and its target landmark
   double landmark_error_mean = 0, landmark_error_max = 0;
   /// the length of the diagonal of the target's bounding box (divide the errors by it for relative values)
@@ -146,12 +168,45 @@ inline void check_registrable_topology(long euler_source, long euler_target)
                         "; registration through the sphere or the ellipsoid needs genus 0");
 }
 
+/// The Moebius area correction of a registration's starting map, searched on a sample of
+/// about 4000 faces only. `mobius_area_correction()` then polishes the sample's optimum on
+/// all faces, 12-18 % of the CPU time of a 25,000-face registration; here the starting map
+/// only needs the Moebius freedom fixed the same way for both surfaces (the landmark
+/// correction and LSDEM move it afterwards), and skipping the polish changed the mean
+/// registration error by less than 0.01 % of the diagonal (benchmark/RESULTS.md, issue 18,
+/// second section). Never worse than no correction on all faces.
+inline Matrix sampled_mobius_area_correction(const Matrix& X, const Index_matrix& F, const Matrix& S)
+{
+  const Vector source_area = face_areas(X, F);
+  const Complex_vector z = north_chart(S);
+  Matrix q = S;
+  const auto apply = [&](const Eigen::Vector3d& xi, const std::vector<Eigen::Index>& vertices) {
+    const Complex w0(xi[0], xi[1]);
+    for(Eigen::Index i : vertices)
+      q.row(i) = inverse_north_stereographic(mobius_rotation_dilation(z[i], w0, xi[2])).transpose();
+  };
+  const Face_sample sample = face_sample(F, source_area, S.rows(), F.rows() / 4000);
+  const Eigen::Vector3d best = nelder_mead_3(
+    [&](const Eigen::Vector3d& xi) {
+      if(xi.head<2>().norm() > 1e3 || std::abs(xi[2]) > 50) return std::numeric_limits<double>::infinity();
+      apply(xi, sample.vertices);
+      return mean_abs_log_area_ratio(sample.source_area, face_areas(q, sample.F));
+    },
+    Eigen::Vector3d::Zero(), Eigen::Vector3d(0.2, 0.2, 0.5), 400, 1e-8);
+  std::vector<Eigen::Index> all(std::size_t(S.rows()));
+  for(Eigen::Index i = 0; i < S.rows(); ++i) all[std::size_t(i)] = i;
+  apply(best, all);
+  const double before = mean_abs_log_area_ratio(source_area, face_areas(S, F));
+  const double after = mean_abs_log_area_ratio(source_area, face_areas(q, F));
+  return after <= before ? q : S;
+}
+
 /// The area-corrected spherical conformal map (the LSDEM starting map), checked fold-free.
 inline Matrix registration_start_on_sphere(const Matrix& X, const Index_matrix& F, const Spd_solver& solver,
                                            const char* which)
 {
   const Flash_result flash = flash_spherical_map(X, F, solver);
-  const Matrix S = mobius_area_correction(X, F, flash.S);
+  const Matrix S = sampled_mobius_area_correction(X, F, flash.S);
   const std::size_t folds = count_inverted_faces_about_center(S, F);
   if(folds > 0)
     throw Algorithm_failure(std::string("the conformal map of the ") + which + " surface is not bijective: " +
@@ -231,6 +286,19 @@ auto target_map_parameters(const NamedParameters& np, const Base& base)
     return base;
 }
 
+/// Moves the landmarks of the spherical map Y onto their common positions by a smooth,
+/// fold-free warp of the sphere (`warp_landmarks_onto_targets()`).
+inline Landmark_correction correct_landmarks(Matrix& Y, const Index_matrix& F, const std::vector<Eigen::Index>& l,
+                                             const Matrix& common)
+{
+  const Landmark_warp_result w = warp_landmarks_onto_targets(Y, F, l, common);
+  Landmark_correction c;
+  c.error_before = w.error_before;
+  c.error_after = w.error_after;
+  c.exact = w.exact;
+  return c;
+}
+
 template <class Map_report_type>
 void refuse_folded(const Map_report_type& r, const char* which)
 {
@@ -271,6 +339,18 @@ void refuse_folded(const Map_report_type& r, const char* which)
 /// Averaging the two aligned images moves each landmark half as far in each map as taking
 /// either surface's images as the reference would move it in the other, which keeps both
 /// maps close to conformal.
+///
+/// **Landmark correction (sphere route).** Each conformal starting map is first moved by a
+/// smooth warp of the sphere that carries its landmark images exactly onto the common
+/// positions (a Gaussian interpolation of the landmark displacements, close to the identity;
+/// `Landmark_correction`), so that LSDEM starts with its landmarks in place and its landmark
+/// term only has to hold them. LSDEM's fold-over repairs can still move landmark vertices
+/// off their positions (by 0.01-0.02 on the unit sphere on maxplanck); the same warp then
+/// moves each final map's landmarks back. Each warp is applied only if the warped map passes
+/// the exact fold-over test (otherwise half, a quarter, an eighth of it, and the report says
+/// that the correction is not exact), so both maps used for the correspondence are fold-free:
+/// `source_map.fold_overs` and `target_map.fold_overs` are the exact counts of the maps after
+/// the correction.
 ///
 /// \tparam SourceMesh, TargetMesh models of `FaceListGraph` (they may differ)
 /// \tparam LandmarkPairs a range of `std::pair<source vertex_descriptor, target vertex_descriptor>`
@@ -369,11 +449,18 @@ Registration_report register_surfaces(const SourceMesh& source, const TargetMesh
   I::Row_point_maps<TargetMesh> target_image(at.vertices.size());
   I::Matrix common;
   if(route == Registration_domain::SPHERE) {
-    const I::Matrix Ss = I::registration_start_on_sphere(as.X, as.F, *solver, "source");
-    const I::Matrix St = I::registration_start_on_sphere(at.X, at.F, *solver, "target");
+    I::Matrix Ss = I::registration_start_on_sphere(as.X, as.F, *solver, "source");
+    I::Matrix St = I::registration_start_on_sphere(at.X, at.F, *solver, "target");
     Eigen::Matrix3d R;
     common = I::common_landmark_directions(I::rows_of(Ss, ls), I::rows_of(St, lt), R);
-    I::Row_point_maps<SourceMesh> start_s(I::Matrix(Ss * R.transpose()));
+    Ss = Ss * R.transpose();
+    // LSDEM starts with every landmark at its common position: its landmark term has only
+    // to hold them there, instead of dragging single vertices through the mapped mesh
+    // (on maxplanck that dragging folded nearly every step, and the step halvings stopped
+    // the flow with the landmarks 0.01-0.02 off; benchmark/RESULTS.md)
+    report.source_start_correction = I::correct_landmarks(Ss, as.F, ls, common);
+    report.target_start_correction = I::correct_landmarks(St, at.F, lt, common);
+    I::Row_point_maps<SourceMesh> start_s(Ss);
     I::Row_point_maps<TargetMesh> start_t(St);
     const auto shared = parameters::combine(
       parameters::density_weight(choose_parameter(get_parameter(np, internal_np::density_weight), 1.)),
@@ -387,6 +474,19 @@ Registration_report register_surfaces(const SourceMesh& source, const TargetMesh
     report.target_map = landmark_aligned_spherical_density_equalizing_map(
       target, I::landmarks_at(at, lt, common), target_image.map(tvim),
       I::target_map_parameters(np, parameters::combine(shared, parameters::initial_map(start_t.map(tvim)))));
+    I::refuse_folded(report.source_map, "source");
+    I::refuse_folded(report.target_map, "target");
+    // the fold-over repairs of the flow move landmark vertices too: put them back
+    const auto finish = [&](auto& image, const I::Index_matrix& F, const std::vector<Eigen::Index>& l,
+                            Landmark_correction& correction, Map_report& map) {
+      I::Matrix Y = image.matrix();
+      correction = I::correct_landmarks(Y, F, l, common);
+      image.points = std::decay_t<decltype(image)>(Y).points;
+      map.fold_overs = I::count_inverted_faces_about_center(Y, F); // exact, of the map that is used
+      map.landmark_error = (I::rows_of(Y, l) - common).rowwise().norm().mean();
+    };
+    finish(source_image, as.F, ls, report.source_correction, report.source_map);
+    finish(target_image, at.F, lt, report.target_correction, report.target_map);
   } else {
     Eigen::Vector3d radii;
     if constexpr(!is_default_parameter<NamedParameters, internal_np::ellipsoid_radii_t>::value) {
