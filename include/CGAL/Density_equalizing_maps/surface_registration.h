@@ -305,6 +305,11 @@ void refuse_folded(const Map_report_type& r, const char* which)
   if(r.fold_overs > 0)
     throw Algorithm_failure(std::string("the map of the ") + which + " surface has " + std::to_string(r.fold_overs) +
                             " fold-overs (exact count): no bijective correspondence can be built on it");
+  // a fold-free map that dropped the landmarks would pair unrelated points
+  if(r.landmarks_given_up)
+    throw Algorithm_failure(std::string("the map of the ") + which +
+                            " surface is fold-free only because it gave up the landmarks (" + r.fallback +
+                            "): its landmarks do not meet their common positions");
 }
 
 } // namespace internal
@@ -406,7 +411,8 @@ void refuse_folded(const Map_report_type& r, const char* which)
 ///   3 pairs, a landmark vertex not in its mesh, a duplicate pair or a vertex in two pairs, or an invalid
 ///   parameter; nothing is written then.
 /// \throws Algorithm_failure if either map has fold-overs (exact count), so that no bijective correspondence
-///   can be built, or if a map could not be computed; nothing is written then.
+///   can be built, if a map is fold-free only because it gave up its landmarks (`Map_report::landmarks_given_up`,
+///   FEQCM route), or if a map could not be computed; nothing is written then.
 template <class SourceMesh, class TargetMesh, class LandmarkPairs, class RegisteredPointMap,
           class NamedParameters = parameters::Default_named_parameters>
 Registration_report register_surfaces(const SourceMesh& source, const TargetMesh& target,
