@@ -218,12 +218,13 @@ inline double opposite_angle_sum_sine(const Eigen::Vector3d& a, const Eigen::Vec
   return (sa * cb + ca * sb) / scale;
 }
 
-/// One pass of intrinsic-Delaunay edge flips on a closed mesh star-shaped
-/// about the origin: an edge whose opposite angles sum above pi is flipped
-/// unless the new edge exists already or a new face would not be positively
-/// oriented about the origin (exact). Each face takes part in at most one flip
+/// One pass of intrinsic-Delaunay edge flips on a closed mesh: an edge whose
+/// opposite angles sum above pi is flipped unless the new edge exists already
+/// or a new face is not `positive` (exact orientation about the origin on the
+/// ellipsoids, in the unwrapped flat torus on the torus). Each face takes part in at most one flip
 /// per pass. Returns the number of flips.
-inline std::size_t delaunay_flip_pass(const Matrix& X, Index_matrix& F)
+template <class FaceIsPositive>
+std::size_t delaunay_flip_pass(const Matrix& X, Index_matrix& F, const FaceIsPositive& positive)
 {
   const Eigen::Index n = X.rows(), m = F.rows();
   const Vertex_faces vf(F, n);
@@ -238,8 +239,6 @@ inline std::size_t delaunay_flip_pass(const Matrix& X, Index_matrix& F)
     return false;
   };
   std::vector<char> touched(static_cast<std::size_t>(m), 0);
-  const Epick::Point_3 origin(0, 0, 0);
-  auto point = [&X](int i) { return Epick::Point_3(X(i, 0), X(i, 1), X(i, 2)); };
   std::size_t flips = 0;
   for(Eigen::Index k = 0; k < m; ++k)
     for(int c = 0; c < 3 && !touched[k]; ++c) {
@@ -255,9 +254,7 @@ inline std::size_t delaunay_flip_pass(const Matrix& X, Index_matrix& F)
          has_edge(a, b))
         continue;
       // (a, i, j) and (b, j, i) become (a, i, b) and (b, j, a)
-      if(CGAL::orientation(origin, point(a), point(i), point(b)) != CGAL::POSITIVE ||
-         CGAL::orientation(origin, point(b), point(j), point(a)) != CGAL::POSITIVE)
-        continue;
+      if(!positive(a, i, b) || !positive(b, j, a)) continue;
       F.row(k) << a, i, b;
       F.row(g) << b, j, a;
       created.insert(key(a, b));
@@ -265,6 +262,22 @@ inline std::size_t delaunay_flip_pass(const Matrix& X, Index_matrix& F)
       ++flips;
     }
   return flips;
+}
+
+/// Face (i, j, k) positively oriented about the origin (exact).
+struct Positive_about_origin
+{
+  const Matrix& X;
+  bool operator()(int i, int j, int k) const
+  {
+    auto point = [this](int v) { return Epick::Point_3(X(v, 0), X(v, 1), X(v, 2)); };
+    return CGAL::orientation(Epick::Point_3(0, 0, 0), point(i), point(j), point(k)) == CGAL::POSITIVE;
+  }
+};
+
+inline std::size_t delaunay_flip_pass(const Matrix& X, Index_matrix& F)
+{
+  return delaunay_flip_pass(X, F, Positive_about_origin{X});
 }
 
 inline void delaunay_flips(const Matrix& X, Index_matrix& F)
@@ -399,42 +412,44 @@ inline void distmesh_relax_on_ellipsoid(Matrix& X, Index_matrix& F, const Eigen:
   }
 }
 
-/// Splits every face of a closed mesh into k^2 faces by its barycentric grid
-/// (k - 1 new points on each edge, shared by the two faces) and projects the
-/// new points radially onto the ellipsoid: V' = k^2 (V - 2) + 2 vertices.
-/// Each small face keeps the shape and 1/k^2 of the area of its parent, and
-/// since scaling a point along its ray does not change the sign of an
-/// orientation about the origin, faces positively oriented about the origin
-/// before the projection stay so.
-inline Triangle_arrays subdivide_onto_ellipsoid(const Triangle_arrays& c, int k, const Eigen::Vector3d& radii)
+/// The split of every face of a closed mesh (n vertices) into k^2 faces by its
+/// barycentric grid: k - 1 new points on each edge (shared by its two faces)
+/// and (k - 1)(k - 2) / 2 inside each face, n' = k^2 (n - 2) + 2 in all (genus
+/// 0; n' = k^2 n on the torus). New vertex n + q is the combination
+/// `weights[q]` of the old vertices `corners[q]`; faces keep their orientation.
+struct Face_subdivision
 {
-  const Eigen::Index n = c.X.rows(), m = c.F.rows();
-  const Eigen::Index edge_points = (k - 1) * (3 * m / 2), face_points = m * (k - 1) * (k - 2) / 2;
-  Triangle_arrays t;
-  t.X.resize(n + edge_points + face_points, 3);
-  t.X.topRows(n) = c.X;
-  t.F.resize(m * k * k, 3);
-  std::unordered_map<long long, int> first_edge_point; // edge (lo, hi) -> index of its point 1 step from lo
-  Eigen::Index next = n, f = 0;
+  Index_matrix F;
+  std::vector<std::array<int, 3> > corners;
+  std::vector<Eigen::Vector3d> weights;
+};
+
+inline Face_subdivision subdivide_faces(const Index_matrix& F, Eigen::Index n, int k)
+{
+  const Eigen::Index m = F.rows();
+  Face_subdivision s;
+  s.F.resize(m * k * k, 3);
+  std::unordered_map<long long, int> first_edge_point; // edge (lo, hi) -> its point 1 step from lo
+  Eigen::Index f = 0;
   std::vector<int> grid(static_cast<std::size_t>((k + 1) * (k + 1)));
+  auto add = [&](int a, int b, int c, const Eigen::Vector3d& w) {
+    s.corners.push_back({{a, b, c}});
+    s.weights.push_back(w);
+    return int(n + Eigen::Index(s.corners.size()) - 1);
+  };
   for(Eigen::Index face = 0; face < m; ++face) {
-    const int v[3] = {c.F(face, 0), c.F(face, 1), c.F(face, 2)};
-    // grid point (i, j): barycentric weights (k - i - j, i, j) of (v0, v1, v2)
+    const int v[3] = {F(face, 0), F(face, 1), F(face, 2)};
     auto at = [&grid, k](int i, int j) -> int& { return grid[i * (k + 1) + j]; };
-    auto point = [&](int i, int j) {
-      return (double(k - i - j) * c.X.row(v[0]) + double(i) * c.X.row(v[1]) + double(j) * c.X.row(v[2])) / double(k);
-    };
-    // the points of edge (p, q) of this face, s steps from p, for s = 1..k-1
-    auto edge_point = [&](int p, int q, int s) {
+    // the point of edge (p, q) of this face s steps from p, 1 <= s < k
+    auto edge_point = [&](int p, int q, int steps) {
       const int lo = std::min(p, q), hi = std::max(p, q);
       const long long key = (long long)lo * n + hi;
       auto it = first_edge_point.find(key);
       if(it == first_edge_point.end()) {
-        it = first_edge_point.emplace(key, int(next)).first;
-        for(int r = 1; r < k; ++r)
-          t.X.row(next++) = (double(k - r) * c.X.row(lo) + double(r) * c.X.row(hi)) / double(k);
+        it = first_edge_point.emplace(key, int(n + Eigen::Index(s.corners.size()))).first;
+        for(int r = 1; r < k; ++r) add(lo, hi, hi, Eigen::Vector3d(double(k - r) / k, double(r) / k, 0.));
       }
-      return it->second + (p == lo ? s : k - s) - 1;
+      return it->second + (p == lo ? steps : k - steps) - 1;
     };
     for(int i = 0; i <= k; ++i)
       for(int j = 0; i + j <= k; ++j) {
@@ -445,21 +460,34 @@ inline Triangle_arrays subdivide_onto_ellipsoid(const Triangle_arrays& c, int k,
         else if(j == 0) at(i, j) = edge_point(v[0], v[1], i);
         else if(i == 0) at(i, j) = edge_point(v[0], v[2], j);
         else if(w0 == 0) at(i, j) = edge_point(v[1], v[2], j);
-        else {
-          t.X.row(next) = point(i, j);
-          at(i, j) = int(next++);
-        }
+        else at(i, j) = add(v[0], v[1], v[2], Eigen::Vector3d(double(w0) / k, double(i) / k, double(j) / k));
       }
     for(int i = 0; i < k; ++i)
       for(int j = 0; i + j < k; ++j) {
-        t.F.row(f++) << at(i, j), at(i + 1, j), at(i, j + 1);
-        if(i + j + 1 < k) t.F.row(f++) << at(i + 1, j), at(i + 1, j + 1), at(i, j + 1);
+        s.F.row(f++) << at(i, j), at(i + 1, j), at(i, j + 1);
+        if(i + j + 1 < k) s.F.row(f++) << at(i + 1, j), at(i + 1, j + 1), at(i, j + 1);
       }
   }
-  CGAL_assertion(next == t.X.rows() && f == t.F.rows());
-  Matrix fresh = t.X.bottomRows(t.X.rows() - n);
+  return s;
+}
+
+/// subdivide_faces() on the ellipsoid: the new points interpolated linearly
+/// and projected radially. Each small face keeps the shape and 1/k^2 of the
+/// area of its parent, and since scaling a point along its ray does not change
+/// the sign of an orientation about the origin, faces positively oriented
+/// about the origin stay so.
+inline Triangle_arrays subdivide_onto_ellipsoid(const Triangle_arrays& c, int k, const Eigen::Vector3d& radii)
+{
+  const Face_subdivision s = subdivide_faces(c.F, c.X.rows(), k);
+  Triangle_arrays t;
+  t.F = s.F;
+  Matrix fresh(Eigen::Index(s.corners.size()), 3);
+  for(std::size_t q = 0; q < s.corners.size(); ++q)
+    fresh.row(q) = s.weights[q](0) * c.X.row(s.corners[q][0]) + s.weights[q](1) * c.X.row(s.corners[q][1]) +
+                   s.weights[q](2) * c.X.row(s.corners[q][2]);
   project_radially(fresh, radii);
-  t.X.bottomRows(t.X.rows() - n) = fresh;
+  t.X.resize(c.X.rows() + fresh.rows(), 3);
+  t.X << c.X, fresh;
   return t;
 }
 
@@ -636,6 +664,146 @@ inline Triangle_arrays uniform_torus_mesh(Eigen::Index n, double R, double r, do
     if(shape < best_shape) { best_shape = shape; best = std::move(t); }
   }
   return best;
+}
+
+/// d reduced to (-period / 2, period / 2]: the difference of two flat-torus
+/// coordinates along the shorter way round.
+inline double wrapped_difference(double d, double period) { return d - period * std::round(d / period); }
+
+/// Face (i, j, k) positively oriented in the flat torus (exact), its corners
+/// j and k unwrapped next to i: counter-clockwise in (u, v) is outward.
+struct Positive_on_flat_torus
+{
+  const Matrix& U;
+  double period_u, period_v;
+  Epick::Point_2 unwrapped(int v, int origin) const
+  {
+    return Epick::Point_2(U(origin, 0) + wrapped_difference(U(v, 0) - U(origin, 0), period_u),
+                          U(origin, 1) + wrapped_difference(U(v, 1) - U(origin, 1), period_v));
+  }
+  bool operator()(int i, int j, int k) const
+  {
+    return CGAL::orientation(Epick::Point_2(U(i, 0), U(i, 1)), unwrapped(j, i), unwrapped(k, i)) == CGAL::POSITIVE;
+  }
+};
+
+inline Matrix torus_points(const Matrix& U, double R, double r)
+{
+  Matrix X(U.rows(), 3);
+  for(Eigen::Index i = 0; i < U.rows(); ++i) X.row(i) = torus_point(U(i, 0), U(i, 1), R, r).transpose();
+  return X;
+}
+
+/// DistMesh on the torus (R, r), in its flat-torus coordinates (u, v): the
+/// repulsive springs act on the points of the torus (3D chords), their
+/// tangential part moves (u, v) by the inverse of the parameterization's
+/// Jacobian (|d/du| = w / R with w = R + r cos(v / r), |d/dv| = 1, orthogonal),
+/// so every vertex stays exactly on the torus; a step that would invert faces
+/// of the flat torus (exact) is retried with their vertices held still;
+/// intrinsic Delaunay flips (3D angles) every `flip_every` steps.
+inline void distmesh_relax_on_torus(Matrix& U, Index_matrix& F, double R, double r, int iterations, double scale,
+                                    int flip_every)
+{
+  const double period_u = 2 * M_PI * R, period_v = 2 * M_PI * r;
+  std::vector<std::array<int, 2> > edges = mesh_edges(F);
+  for(int it = 0; it < iterations; ++it) {
+    const Matrix X = torus_points(U, R, r);
+    const Matrix D = repulsive_springs(X, edges, scale);
+    Matrix dU(U.rows(), 2);
+    for(Eigen::Index i = 0; i < U.rows(); ++i) {
+      const double phi = U(i, 0) / R, theta = U(i, 1) / r, w = R + r * std::cos(theta);
+      const Eigen::Vector3d eu(-std::sin(phi), std::cos(phi), 0);
+      const Eigen::Vector3d ev(-std::sin(theta) * std::cos(phi), -std::sin(theta) * std::sin(phi), std::cos(theta));
+      const Eigen::Vector3d d = row_vector3(D, i);
+      dU.row(i) << R * d.dot(eu) / w, d.dot(ev);
+    }
+    for(int attempt = 0; attempt < 8; ++attempt) {
+      Matrix V = U + 0.2 * dU;
+      for(Eigen::Index i = 0; i < V.rows(); ++i) {
+        V(i, 0) -= period_u * std::floor(V(i, 0) / period_u);
+        V(i, 1) -= period_v * std::floor(V(i, 1) / period_v);
+      }
+      const Positive_on_flat_torus positive{V, period_u, period_v};
+      std::vector<Eigen::Index> inverted;
+      for(Eigen::Index k = 0; k < F.rows(); ++k)
+        if(!positive(F(k, 0), F(k, 1), F(k, 2))) inverted.push_back(k);
+      if(inverted.empty()) { U.swap(V); break; }
+      for(Eigen::Index k : inverted)
+        for(int c = 0; c < 3; ++c) dU.row(F(k, c)).setZero();
+    }
+    if((it + 1) % flip_every == 0 || it + 1 == iterations) {
+      const Matrix Y = torus_points(U, R, r);
+      const Positive_on_flat_torus positive{U, period_u, period_v};
+      for(int pass = 0; pass < 20 && delaunay_flip_pass(Y, F, positive) > 0; ++pass) {}
+      edges = mesh_edges(F);
+    }
+  }
+}
+
+/// subdivide_faces() in the flat torus: new points interpolated between the
+/// corners unwrapped next to the first one, wrapped back into the periods.
+inline Matrix subdivide_on_flat_torus(const Matrix& U, Index_matrix& F, int k, double period_u, double period_v)
+{
+  Face_subdivision s = subdivide_faces(F, U.rows(), k);
+  Matrix V(U.rows() + Eigen::Index(s.corners.size()), 2);
+  V.topRows(U.rows()) = U;
+  for(std::size_t q = 0; q < s.corners.size(); ++q) {
+    const int a = s.corners[q][0];
+    double u = U(a, 0), v = U(a, 1);
+    for(int c = 1; c < 3; ++c) {
+      u += s.weights[q](c) * wrapped_difference(U(s.corners[q][c], 0) - U(a, 0), period_u);
+      v += s.weights[q](c) * wrapped_difference(U(s.corners[q][c], 1) - U(a, 1), period_v);
+    }
+    V.row(U.rows() + Eigen::Index(q)) << u - period_u * std::floor(u / period_u), v - period_v * std::floor(v / period_v);
+  }
+  F.swap(s.F);
+  return V;
+}
+
+/// The relaxed torus mesh with about n vertices (within 1 %): the lattice of
+/// uniform_torus_mesh() with about n / k^2 vertices (k a product of factors at
+/// most 6, n / k^2 near 300, k^2 x the lattice's size within 1 % of n), 2,000
+/// DistMesh steps on it (1.1 x the mean edge length), then each subdivision
+/// level with 80 steps (1.2 x), as on the ellipsoid. The flips give up valence
+/// 6 for regular shapes at uniform sizes (see the file comment).
+inline Triangle_arrays relaxed_torus_mesh(Eigen::Index n, double R, double r, double start_size_target = 0.5)
+{
+  check_vertex_count(n, 16);
+  const double period_u = 2 * M_PI * R, period_v = 2 * M_PI * r;
+  const double ideal = std::sqrt(double(n) / 300.);
+  std::vector<std::pair<double, std::vector<int> > > candidates; // (score, factors)
+  for(int k = 1; double(k) <= 2. * ideal + 1.; ++k) {
+    if(double(n) / double(k * k) < 16.) break;
+    std::vector<int> f;
+    int rest = k;
+    for(int p = 6; p >= 2; --p)
+      while(rest % p == 0) { f.push_back(p); rest /= p; }
+    if(rest == 1) candidates.emplace_back(std::abs(std::log(double(k) / ideal)) + 0.15 * double(f.size()), f);
+  }
+  std::sort(candidates.begin(), candidates.end());
+  std::vector<int> factors;
+  Triangle_arrays lattice;
+  for(const auto& c : candidates) {
+    Eigen::Index k = 1;
+    for(int p : c.second) k *= p;
+    lattice = uniform_torus_mesh(Eigen::Index(std::llround(double(n) / double(k * k))), R, r, start_size_target);
+    factors = c.second;
+    if(std::abs(double(lattice.X.rows() * k * k) - double(n)) <= 0.01 * double(n)) break;
+  }
+  Matrix U(lattice.X.rows(), 2);
+  for(Eigen::Index i = 0; i < U.rows(); ++i) {
+    const Eigen::Vector2d c = torus_coordinates(row_vector3(lattice.X, i), R, r);
+    U.row(i) << c(0), c(1);
+  }
+  Triangle_arrays t;
+  t.F = lattice.F;
+  distmesh_relax_on_torus(U, t.F, R, r, 2000, 1.1, 10);
+  for(int p : factors) {
+    U = subdivide_on_flat_torus(U, t.F, p, period_u, period_v);
+    distmesh_relax_on_torus(U, t.F, R, r, 80, 1.2, 10);
+  }
+  t.X = torus_points(U, R, r);
+  return t;
 }
 
 } // namespace internal
