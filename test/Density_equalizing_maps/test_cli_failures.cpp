@@ -209,6 +209,29 @@ void repair(const Temporary_folder& dir)
 
 } // namespace
 
+/// `dem remesh --torus-mesh lattice|relaxed` (issue 12 items 2 and 8): another
+/// value, or the option with a map onto the sphere or an ellipsoid, is a usage
+/// error (2) before any work; with a torus method both meshes are written.
+void remesh_torus_mesh_option(const Temporary_folder& dir, const std::string& sphere)
+{
+  const std::string torus = write_file(dir / "torus.off", off_text(torus_soup(3, 1, 40, 14)));
+  Result r = run_dem(dir, "remesh " + quoted(torus) + " --via toroidal-parameterization --torus 3 1 --vertices 300" +
+                            " --torus-mesh hexagonal --output " + quoted(dir / "t.off"));
+  expect(r, 2, "remesh --torus-mesh hexagonal", "neither lattice nor relaxed");
+  check(!fs::exists(dir / "t.off"), "remesh --torus-mesh hexagonal: nothing written");
+  r = run_dem(dir, "remesh " + quoted(sphere) + " --via spherical-conformal --vertices 300 --torus-mesh relaxed" +
+                     " --output " + quoted(dir / "s.off"));
+  expect(r, 2, "remesh --torus-mesh with a sphere map", "torus methods only");
+  check(!fs::exists(dir / "s.off"), "remesh --torus-mesh with a sphere map: nothing written");
+  for(const std::string mesh : {"lattice", "relaxed"}) {
+    const fs::path out = dir / ("t_" + mesh + ".off");
+    r = run_dem(dir, "remesh " + quoted(torus) + " --via toroidal-parameterization --torus 3 1 --vertices 300" +
+                       " --torus-mesh " + mesh + " --output " + quoted(out) + " --quiet");
+    expect(r, 0, "remesh --torus-mesh " + mesh);
+    check(fs::exists(out), "remesh --torus-mesh " + mesh + ": the remeshed torus is written");
+  }
+}
+
 int main()
 {
   const Temporary_folder dir("dem_test_cli_failures");
@@ -218,6 +241,7 @@ int main()
   algorithm_failure_exit_status(dir, sphere, soup);
   reading_errors(dir);
   repair(dir);
+  remesh_torus_mesh_option(dir, sphere);
   if(failures() == 0) { std::cout << "test_cli_failures: all checks passed" << std::endl; return 0; }
   std::cerr << "test_cli_failures: " << failures() << " check(s) failed" << std::endl;
   return 1;

@@ -29,14 +29,14 @@ namespace {
 /// Takes `--via M` and `--vertices N` out of the arguments; the rest is a map
 /// command line `M INPUT [options]`.
 bool split_remesh_arguments(const std::vector<std::string>& args, std::vector<std::string>& map_args,
-                            std::size_t& vertices, std::string& error)
+                            std::size_t& vertices, std::string& torus_mesh, std::string& error)
 {
   std::string via, count;
   std::vector<std::string> rest;
   for(std::size_t i = 0; i < args.size(); ++i) {
-    if(args[i] == "--via" || args[i] == "--vertices") {
+    if(args[i] == "--via" || args[i] == "--vertices" || args[i] == "--torus-mesh") {
       if(i + 1 >= args.size()) { error = "option " + args[i] + " needs a value"; return false; }
-      std::string& target = args[i] == "--via" ? via : count;
+      std::string& target = args[i] == "--via" ? via : args[i] == "--vertices" ? count : torus_mesh;
       target = args[i + 1];
       ++i;
     } else {
@@ -52,6 +52,10 @@ bool split_remesh_arguments(const std::vector<std::string>& args, std::vector<st
     vertices = std::size_t(n);
   } catch(const std::exception&) {
     error = "option --vertices: \"" + count + "\" is not a positive integer";
+    return false;
+  }
+  if(!torus_mesh.empty() && torus_mesh != "lattice" && torus_mesh != "relaxed") {
+    error = "option --torus-mesh: \"" + torus_mesh + "\" is neither lattice nor relaxed";
     return false;
   }
   map_args.assign(1, via);
@@ -98,6 +102,9 @@ const char* remesh_usage()
          "                   toroidal-parameterization, tdem (genus 1, torus; needs --torus R r)\n"
          "  --vertices N     vertex count of the domain mesh (N >= 12; within 1 % for N >= 100)\n"
          "  --population FILE  with sdem/lsdem/edem/edeq/tdem: denser triangles where the population is higher\n"
+         "  --torus-mesh lattice|relaxed  torus methods only: the domain mesh; lattice (default): every vertex\n"
+         "                   of valence 6, delta_shape about 0.07 at R/r = 3; relaxed: DistMesh with vertices of\n"
+         "                   valence 5 and 7, delta_shape <= 0.05 and delta_size <= 0.7 (measured)\n"
          "  the METHOD's own options (dem METHOD --help), --output FILE (the remeshed surface, any mesh\n"
          "  format of --output), --metrics FILE (the map's keys plus delta_size, delta_shape,\n"
          "  remesh_vertices, remesh_faces, remesh_seconds), --quiet\n"
@@ -112,15 +119,22 @@ int remesh_command(const std::vector<std::string>& args)
     if(a == "--help" || a == "-h") { std::cout << remesh_usage(); return 0; }
   Options opt;
   std::size_t vertices = 0;
+  std::string torus_mesh;
   {
     std::vector<std::string> map_args;
     std::string error;
-    if(!split_remesh_arguments(args, map_args, vertices, error) ||
+    if(!split_remesh_arguments(args, map_args, vertices, torus_mesh, error) ||
        parse_command_line(map_args, opt, error) == Parse_status::ERROR) {
       std::cerr << "dem remesh: " << error << "\n(dem --help prints the usage)\n";
       return 2;
     }
+    if(!torus_mesh.empty() && domain_of(opt.method) != Domain::TORUS) {
+      std::cerr << "dem remesh: option --torus-mesh applies to the torus methods only (not "
+                << method_name(opt.method) << ")\n(dem --help prints the usage)\n";
+      return 2;
+    }
   }
+  const bool torus_lattice = torus_mesh != "relaxed";
   if(vertices < 12) { // before the map: a refused request costs nothing
     std::cerr << "dem: invalid input: at least 12 vertices must be requested for a remeshed surface (got "
               << vertices << ")\n";
@@ -157,7 +171,8 @@ int remesh_command(const std::vector<std::string>& args)
       stages.begin("remeshing (uniform domain mesh pulled back through the map)");
       const Stopwatch watch;
       remesh = remesh_on_domain(opt, run, [&](const auto& domain) {
-        return DEM::remesh_through_map(pb.mesh, mapped, domain, vertices, remeshed);
+        return DEM::remesh_through_map(pb.mesh, mapped, domain, vertices, remeshed,
+                                       DEM::parameters::torus_lattice(torus_lattice));
       });
       watch.stop(remesh_seconds, remesh_cpu);
     }

@@ -42,6 +42,7 @@ enum relative_area_tolerance_t { relative_area_tolerance };
 enum number_of_passes_t       { number_of_passes };
 enum boundary_step_t          { boundary_step };
 enum pass_callback_t          { pass_callback };
+enum torus_lattice_t          { torus_lattice };
 } // namespace internal_np
 
 namespace parameters {
@@ -78,6 +79,7 @@ CGAL_DEM_ADD_NAMED_PARAMETER(overlap_subdivision_t, overlap_subdivision)
 CGAL_DEM_ADD_NAMED_PARAMETER(relative_area_tolerance_t, relative_area_tolerance)
 CGAL_DEM_ADD_NAMED_PARAMETER(number_of_passes_t,   number_of_passes)
 CGAL_DEM_ADD_NAMED_PARAMETER(boundary_step_t,      boundary_step)
+CGAL_DEM_ADD_NAMED_PARAMETER(torus_lattice_t,      torus_lattice)
 CGAL_DEM_ADD_NAMED_PARAMETER(pass_callback_t,      pass_callback)
 #undef CGAL_DEM_ADD_NAMED_PARAMETER
 
