@@ -291,6 +291,55 @@ void test_honest_non_convergence()
   check(r.final_error < r.initial_error, "SDEM, 3 iterations: the stopping quantity decreased");
 }
 
+/// Var of the normalized re-coupled vertex density of a map (paper 001's measure).
+double vertex_variance(const Mesh& m, Point_map mapped, Face_map p)
+{
+  return DEM::density_variance(m, mapped, PM::face_population_map(p)).vertex;
+}
+
+/// A density-only flow (SDEM, EDEM, TDEM) that does not converge returns the
+/// most uniform of its maps: never a density less uniform than the start's.
+/// `run(out, iterations)` maps with the given iteration limit (0: the initial map).
+template <class Run>
+void check_most_uniform(Mesh& m, Face_map p, const std::string& what, const Run& run)
+{
+  Point_map start = fresh(m, "v:start"), out = fresh(m, "v:out");
+  run(start, 0);
+  Stopwatch clock;
+  const DEM::Map_report r = run(out, -1);
+  const double v0 = vertex_variance(m, start, p), v1 = vertex_variance(m, out, p);
+  std::cout << "  " << what << ": " << clock.seconds() << " s, " << r.iterations << " iterations, "
+            << DEM::to_string(r.termination) << ", Var(vertex) " << v0 << " -> " << v1 << "; " << r.message << "\n";
+  check(r.fold_overs == 0 && DEM::number_of_fold_overs(m, out) == 0, what + ": 0 fold-overs (exact count)");
+  if(!r.converged()) {
+    check(v1 <= v0, what + ": not converged, and the returned map is at least as uniform as the start (Var(vertex) " +
+                      std::to_string(v0) + " -> " + std::to_string(v1) + ")");
+    check(!contains(r.message, "less uniform"), what + ": no regression reported (" + r.message + ")");
+  }
+  m.remove_property_map(start);
+  m.remove_property_map(out);
+}
+
+void test_most_uniform_map()
+{
+  // a step population of ratio 1e4 on icosphere(3): EDEM's last map is less
+  // uniform than its start (sd/mean 1.30 -> 1.42 after 300 iterations)
+  Mesh sphere = to_mesh(icosphere_arrays(3));
+  Face_map p = population(sphere, 1e4, true);
+  for(Method k : {Method::SDEM, Method::EDEM})
+    check_most_uniform(sphere, p, std::string(name_of(k)) + " step 1e4", [&](Point_map out, int iterations) {
+      const auto np = PM::combine(PM::face_population_map(p), PM::ellipsoid_radii(std::array<double, 3>{1, 1, 1}));
+      if(iterations >= 0) {
+        const auto np0 = PM::combine(np, PM::number_of_iterations(iterations));
+        return k == Method::SDEM ? DEM::spherical_density_equalizing_map(sphere, out, np0)
+                                 : DEM::ellipsoidal_density_equalizing_map(sphere, out, np0);
+      }
+      return k == Method::SDEM ? DEM::spherical_density_equalizing_map(sphere, out, np)
+                               : DEM::ellipsoidal_density_equalizing_map(sphere, out, np);
+    });
+  sphere.remove_property_map(p);
+}
+
 /// The dem tool tells a fallback and a non-converged run: the summary line
 /// and the metrics JSON carry `fallback` and `repairs`, stderr has a warning.
 std::string read_text(const std::string& file)
@@ -374,44 +423,37 @@ void test_capsules()
 
 void test_extreme_populations()
 {
+  // not converged yet (issue 14 item 2, see the `known` mode), but fold-free
+  // and never ending less uniform than the start
   Mesh sphere = to_mesh(icosphere_arrays(3));
   for(double ratio : {1e2, 1e4, 1e6})
     for(bool step : {true, false}) {
       const std::string kind = std::string(step ? "step" : "bump") + " 1e" + std::to_string(int(std::log10(ratio)));
       Face_map p = population(sphere, ratio, step);
-      for(Method k : {Method::SDEM, Method::EDEM}) {
-        Point_map out = fresh(sphere, "v:out");
-        const auto np = PM::combine(PM::face_population_map(p), PM::ellipsoid_radii(std::array<double, 3>{1, 1, 1}));
-        Stopwatch clock;
-        const DEM::Map_report r = k == Method::SDEM ? DEM::spherical_density_equalizing_map(sphere, out, np)
-                                                    : DEM::ellipsoidal_density_equalizing_map(sphere, out, np);
-        const std::string what = std::string(name_of(k)) + " " + kind;
-        std::cout << "  " << what << ": " << clock.seconds() << " s, " << r.iterations << " iterations, "
-                  << DEM::to_string(r.termination) << ", sd/mean " << r.initial_error << " -> " << r.final_error << "\n";
-        fold_free(sphere, out, r, what);
-        // honest: a run that is not converged is reported so, with a message
-        // when it ends less uniform than it started
-        if(!r.converged() && r.final_error > r.initial_error)
-          check(contains(r.message, "less uniform"), what + ": the regression is in the message");
-        sphere.remove_property_map(out);
-      }
+      for(Method k : {Method::SDEM, Method::EDEM})
+        check_most_uniform(sphere, p, std::string(name_of(k)) + " " + kind, [&](Point_map out, int iterations) {
+          const auto np = PM::combine(PM::face_population_map(p), PM::ellipsoid_radii(std::array<double, 3>{1, 1, 1}));
+          if(iterations >= 0) {
+            const auto np0 = PM::combine(np, PM::number_of_iterations(iterations));
+            return k == Method::SDEM ? DEM::spherical_density_equalizing_map(sphere, out, np0)
+                                     : DEM::ellipsoidal_density_equalizing_map(sphere, out, np0);
+          }
+          return k == Method::SDEM ? DEM::spherical_density_equalizing_map(sphere, out, np)
+                                   : DEM::ellipsoidal_density_equalizing_map(sphere, out, np);
+        });
       sphere.remove_property_map(p);
     }
   Mesh torus = to_mesh(torus_arrays(3, 1, 40, 20));
   for(double ratio : {1e2, 1e4, 1e6})
     for(bool step : {true, false}) {
       Face_map p = population(torus, ratio, step, 3);
-      Point_map out = fresh(torus, "v:out");
-      Stopwatch clock;
-      const DEM::Map_report r = DEM::toroidal_density_equalizing_map(
-        torus, out, PM::combine(PM::torus_radii(std::array<double, 2>{3, 1}), PM::face_population_map(p)));
       const std::string what = std::string("TDEM ") + (step ? "step" : "bump") + " 1e" + std::to_string(int(std::log10(ratio)));
-      std::cout << "  " << what << ": " << clock.seconds() << " s, " << r.iterations << " iterations, "
-                << DEM::to_string(r.termination) << ", sd/mean " << r.initial_error << " -> " << r.final_error << "\n";
-      check(r.fold_overs == 0, what + ": 0 fold-overs");
-      if(!r.converged() && r.final_error > r.initial_error)
-        check(contains(r.message, "less uniform"), what + ": the regression is in the message");
-      torus.remove_property_map(out);
+      check_most_uniform(torus, p, what, [&](Point_map out, int iterations) {
+        const auto np = PM::combine(PM::torus_radii(std::array<double, 2>{3, 1}), PM::face_population_map(p));
+        if(iterations >= 0)
+          return DEM::toroidal_density_equalizing_map(torus, out, PM::combine(np, PM::number_of_iterations(iterations)));
+        return DEM::toroidal_density_equalizing_map(torus, out, np);
+      });
       torus.remove_property_map(p);
     }
 }
@@ -452,6 +494,7 @@ int main(int argc, char** argv)
     test_scale();
     test_sliver_conformal();
     test_honest_non_convergence();
+    test_most_uniform_map();
     test_cli_honesty();
   } else if(mode == "long") {
     test_capsules();

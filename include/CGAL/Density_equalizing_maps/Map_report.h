@@ -51,8 +51,10 @@ public:
 enum class Termination
 {
   CONVERGED,          ///< the stopping criterion was met
-  MAXIMUM_ITERATIONS, ///< the iteration limit was reached first
-  STALLED,            ///< no fold-over-free step could be found; the last bijective map is returned
+  MAXIMUM_ITERATIONS, ///< the iteration limit was reached first (the density-only flows, SDEM, EDEM and TDEM,
+                      ///< return the most uniform of the run's maps, see `Map_report::message`)
+  STALLED,            ///< no fold-over-free step could be found; the last bijective map is returned, or, by
+                      ///< the density-only flows (SDEM, EDEM, TDEM), the most uniform of the run's maps (see `Map_report::message`)
   CANCELLED,          ///< the progress callback asked to stop; the last bijective map is returned
   NOT_ITERATIVE       ///< a direct (non-iterative) method
 };
