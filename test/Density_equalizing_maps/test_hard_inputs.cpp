@@ -301,7 +301,7 @@ double vertex_variance(const Mesh& m, Point_map mapped, Face_map p)
 /// most uniform of its maps: never a density less uniform than the start's.
 /// `run(out, iterations)` maps with the given iteration limit (0: the initial map).
 template <class Run>
-void check_most_uniform(Mesh& m, Face_map p, const std::string& what, const Run& run)
+void check_most_uniform(Mesh& m, Face_map p, const std::string& what, const Run& run, bool on_sphere = true)
 {
   Point_map start = fresh(m, "v:start"), out = fresh(m, "v:out");
   run(start, 0);
@@ -310,7 +310,10 @@ void check_most_uniform(Mesh& m, Face_map p, const std::string& what, const Run&
   const double v0 = vertex_variance(m, start, p), v1 = vertex_variance(m, out, p);
   std::cout << "  " << what << ": " << clock.seconds() << " s, " << r.iterations << " iterations, "
             << DEM::to_string(r.termination) << ", Var(vertex) " << v0 << " -> " << v1 << "; " << r.message << "\n";
-  check(r.fold_overs == 0 && DEM::number_of_fold_overs(m, out) == 0, what + ": 0 fold-overs (exact count)");
+  // number_of_fold_overs() counts about the centre (sphere, ellipsoid); the
+  // torus report's count is that of the flat-torus layout (exact predicates)
+  check(r.fold_overs == 0 && (!on_sphere || DEM::number_of_fold_overs(m, out) == 0),
+        what + ": 0 fold-overs (exact count)");
   if(!r.converged()) {
     check(v1 <= v0, what + ": not converged, and the returned map is at least as uniform as the start (Var(vertex) " +
                       std::to_string(v0) + " -> " + std::to_string(v1) + ")");
@@ -453,7 +456,7 @@ void test_extreme_populations()
         if(iterations >= 0)
           return DEM::toroidal_density_equalizing_map(torus, out, PM::combine(np, PM::number_of_iterations(iterations)));
         return DEM::toroidal_density_equalizing_map(torus, out, np);
-      });
+      }, false);
       torus.remove_property_map(p);
     }
 }
