@@ -38,7 +38,8 @@ public:
 /// written to the output maps when it is thrown.
 ///
 /// A run that starts but cannot improve further (a density-equalizing flow
-/// that stalls) does not throw: it returns its last bijective map with
+/// that stalls) does not throw: it returns a bijective map (the last one, or,
+/// for SDEM, EDEM and TDEM, the most uniform one of the run) with
 /// `Map_report::termination` set to `Termination::STALLED`.
 class Algorithm_failure : public std::runtime_error
 {
