@@ -4,13 +4,15 @@
 //     scaled by 1e+100 and 1e-100 gives the same map as the original; the
 //     conformal maps of a mesh with sliver faces (1e-4 of the mean area) are
 //     fold-free with the quality of the sliver-free mesh; a fallback is told
-//     in the report; a run that ends less uniform than it started says so.
+//     in the report; a density-only flow that does not converge returns the
+//     most uniform of its maps (SDEM, EDEM on a step population of ratio 1e4).
 //   `long` (ctest label `hard`): capsules 10:1 and 30:1 and populations of
 //     ratio 1e2..1e6 (steps and smooth bumps) for SDEM, EDEM and TDEM: fold-free,
-//     and honest about convergence.
+//     honest about convergence, and a run that does not converge returns a map
+//     at least as uniform as its start.
 //   `known` (label known_failure): the acceptance items of issue 14 that do
-//     not hold yet (extreme populations converging within 10x the uniform
-//     time; SDEM / EDEM converging on sliver meshes).
+//     not hold yet (SDEM, EDEM, TDEM converging on extreme populations within
+//     10x the time of a mild one; SDEM converging on sliver meshes).
 
 #include <CGAL/Density_equalizing_maps/ellipsoidal_conformal_map.h>
 #include <CGAL/Density_equalizing_maps/ellipsoidal_density_equalizing_map.h>
@@ -296,6 +298,58 @@ void test_honest_non_convergence()
   check(r.final_error < r.initial_error, "SDEM, 3 iterations: the stopping quantity decreased");
 }
 
+/// Var of the normalized re-coupled vertex density of a map (paper 001's measure).
+double vertex_variance(const Mesh& m, Point_map mapped, Face_map p)
+{
+  return DEM::density_variance(m, mapped, PM::face_population_map(p)).vertex;
+}
+
+/// A density-only flow (SDEM, EDEM, TDEM) that does not converge returns the
+/// most uniform of its maps: never a density less uniform than the start's.
+/// `run(out, iterations)` maps with the given iteration limit (0: the initial map).
+template <class Run>
+void check_most_uniform(Mesh& m, Face_map p, const std::string& what, const Run& run, bool on_sphere = true)
+{
+  Point_map start = fresh(m, "v:start"), out = fresh(m, "v:out");
+  run(start, 0);
+  Stopwatch clock;
+  const DEM::Map_report r = run(out, -1);
+  const double v0 = vertex_variance(m, start, p), v1 = vertex_variance(m, out, p);
+  std::cout << "  " << what << ": " << clock.seconds() << " s, " << r.iterations << " iterations, "
+            << DEM::to_string(r.termination) << ", Var(vertex) " << v0 << " -> " << v1 << "; " << r.message << "\n";
+  // number_of_fold_overs() counts about the centre (sphere, ellipsoid); the
+  // torus report's count is that of the flat-torus layout (exact predicates)
+  check(r.fold_overs == 0 && (!on_sphere || DEM::number_of_fold_overs(m, out) == 0),
+        what + ": 0 fold-overs (exact count)");
+  if(!r.converged()) {
+    check(v1 <= v0, what + ": not converged, and the returned map is at least as uniform as the start (Var(vertex) " +
+                      std::to_string(v0) + " -> " + std::to_string(v1) + ")");
+    check(!contains(r.message, "less uniform"), what + ": no regression reported (" + r.message + ")");
+  }
+  m.remove_property_map(start);
+  m.remove_property_map(out);
+}
+
+void test_most_uniform_map()
+{
+  // a step population of ratio 1e4 on icosphere(3): EDEM's last map is less
+  // uniform than its start (sd/mean 1.30 -> 1.42 after 300 iterations)
+  Mesh sphere = to_mesh(icosphere_arrays(3));
+  Face_map p = population(sphere, 1e4, true);
+  for(Method k : {Method::SDEM, Method::EDEM})
+    check_most_uniform(sphere, p, std::string(name_of(k)) + " step 1e4", [&](Point_map out, int iterations) {
+      const auto np = PM::combine(PM::face_population_map(p), PM::ellipsoid_radii(std::array<double, 3>{1, 1, 1}));
+      if(iterations >= 0) {
+        const auto np0 = PM::combine(np, PM::number_of_iterations(iterations));
+        return k == Method::SDEM ? DEM::spherical_density_equalizing_map(sphere, out, np0)
+                                 : DEM::ellipsoidal_density_equalizing_map(sphere, out, np0);
+      }
+      return k == Method::SDEM ? DEM::spherical_density_equalizing_map(sphere, out, np)
+                               : DEM::ellipsoidal_density_equalizing_map(sphere, out, np);
+    });
+  sphere.remove_property_map(p);
+}
+
 /// The dem tool tells a fallback and a non-converged run: the summary line
 /// and the metrics JSON carry `fallback` and `repairs`, stderr has a warning.
 std::string read_text(const std::string& file)
@@ -406,44 +460,37 @@ void test_capsules()
 
 void test_extreme_populations()
 {
+  // not converged yet (issue 14 item 2, see the `known` mode), but fold-free
+  // and never ending less uniform than the start
   Mesh sphere = to_mesh(icosphere_arrays(3));
   for(double ratio : {1e2, 1e4, 1e6})
     for(bool step : {true, false}) {
       const std::string kind = std::string(step ? "step" : "bump") + " 1e" + std::to_string(int(std::log10(ratio)));
       Face_map p = population(sphere, ratio, step);
-      for(Method k : {Method::SDEM, Method::EDEM}) {
-        Point_map out = fresh(sphere, "v:out");
-        const auto np = PM::combine(PM::face_population_map(p), PM::ellipsoid_radii(std::array<double, 3>{1, 1, 1}));
-        Stopwatch clock;
-        const DEM::Map_report r = k == Method::SDEM ? DEM::spherical_density_equalizing_map(sphere, out, np)
-                                                    : DEM::ellipsoidal_density_equalizing_map(sphere, out, np);
-        const std::string what = std::string(name_of(k)) + " " + kind;
-        std::cout << "  " << what << ": " << clock.seconds() << " s, " << r.iterations << " iterations, "
-                  << DEM::to_string(r.termination) << ", sd/mean " << r.initial_error << " -> " << r.final_error << "\n";
-        fold_free(sphere, out, r, what);
-        // honest: a run that is not converged is reported so, with a message
-        // when it ends less uniform than it started
-        if(!r.converged() && r.final_error > r.initial_error)
-          check(contains(r.message, "less uniform"), what + ": the regression is in the message");
-        sphere.remove_property_map(out);
-      }
+      for(Method k : {Method::SDEM, Method::EDEM})
+        check_most_uniform(sphere, p, std::string(name_of(k)) + " " + kind, [&](Point_map out, int iterations) {
+          const auto np = PM::combine(PM::face_population_map(p), PM::ellipsoid_radii(std::array<double, 3>{1, 1, 1}));
+          if(iterations >= 0) {
+            const auto np0 = PM::combine(np, PM::number_of_iterations(iterations));
+            return k == Method::SDEM ? DEM::spherical_density_equalizing_map(sphere, out, np0)
+                                     : DEM::ellipsoidal_density_equalizing_map(sphere, out, np0);
+          }
+          return k == Method::SDEM ? DEM::spherical_density_equalizing_map(sphere, out, np)
+                                   : DEM::ellipsoidal_density_equalizing_map(sphere, out, np);
+        });
       sphere.remove_property_map(p);
     }
   Mesh torus = to_mesh(torus_arrays(3, 1, 40, 20));
   for(double ratio : {1e2, 1e4, 1e6})
     for(bool step : {true, false}) {
       Face_map p = population(torus, ratio, step, 3);
-      Point_map out = fresh(torus, "v:out");
-      Stopwatch clock;
-      const DEM::Map_report r = DEM::toroidal_density_equalizing_map(
-        torus, out, PM::combine(PM::torus_radii(std::array<double, 2>{3, 1}), PM::face_population_map(p)));
       const std::string what = std::string("TDEM ") + (step ? "step" : "bump") + " 1e" + std::to_string(int(std::log10(ratio)));
-      std::cout << "  " << what << ": " << clock.seconds() << " s, " << r.iterations << " iterations, "
-                << DEM::to_string(r.termination) << ", sd/mean " << r.initial_error << " -> " << r.final_error << "\n";
-      check(r.fold_overs == 0, what + ": 0 fold-overs");
-      if(!r.converged() && r.final_error > r.initial_error)
-        check(contains(r.message, "less uniform"), what + ": the regression is in the message");
-      torus.remove_property_map(out);
+      check_most_uniform(torus, p, what, [&](Point_map out, int iterations) {
+        const auto np = PM::combine(PM::torus_radii(std::array<double, 2>{3, 1}), PM::face_population_map(p));
+        if(iterations >= 0)
+          return DEM::toroidal_density_equalizing_map(torus, out, PM::combine(np, PM::number_of_iterations(iterations)));
+        return DEM::toroidal_density_equalizing_map(torus, out, np);
+      }, false);
       torus.remove_property_map(p);
     }
 }
@@ -453,19 +500,60 @@ void test_extreme_populations()
 
 void test_known_failures()
 {
+  // issue 14 item 2: SDEM, EDEM and TDEM converge on steps and bumps of ratio
+  // 1e2..1e6, within 10x the time of a mild population (a bump of ratio 2) on
+  // the same mesh. The sphere runs take seconds; TDEM's the longest (up to
+  // minutes at 1000 iterations), so it gets the two hardest cases only.
   Mesh sphere = to_mesh(icosphere_arrays(3));
-  Point_map out = fresh(sphere, "v:out");
+  for(Method k : {Method::SDEM, Method::EDEM}) {
+    auto map = [&](Face_map p, Point_map out) {
+      const auto np = PM::combine(PM::face_population_map(p), PM::ellipsoid_radii(std::array<double, 3>{1, 1, 1}));
+      return k == Method::SDEM ? DEM::spherical_density_equalizing_map(sphere, out, np)
+                               : DEM::ellipsoidal_density_equalizing_map(sphere, out, np);
+    };
+    Point_map out = fresh(sphere, "v:out");
+    Face_map mild = population(sphere, 2, false);
+    Stopwatch uniform_clock;
+    map(mild, out);
+    const double uniform = std::max(uniform_clock.seconds(), 0.05);
+    sphere.remove_property_map(mild);
+    for(double ratio : {1e2, 1e4, 1e6})
+      for(bool step : {true, false}) {
+        if(!step && ratio < 1e6) continue; // bumps 1e2 and 1e4 converge (long mode)
+        Face_map p = population(sphere, ratio, step);
+        const std::string what = std::string(name_of(k)) + (step ? " step" : " bump") + " 1e" +
+                                 std::to_string(int(std::log10(ratio)));
+        Stopwatch clock;
+        const DEM::Map_report r = map(p, out);
+        const double t = clock.seconds();
+        check(r.converged(), what + " converges (" + DEM::to_string(r.termination) + ")");
+        check(t <= 10 * uniform, what + ": time " + std::to_string(t) + " s within 10x of a mild population's (" +
+                                   std::to_string(uniform) + " s)");
+        sphere.remove_property_map(p);
+      }
+    sphere.remove_property_map(out);
+  }
+  Mesh torus = to_mesh(torus_arrays(3, 1, 40, 20));
+  auto tdem = [&](Face_map p, Point_map out) {
+    return DEM::toroidal_density_equalizing_map(
+      torus, out, PM::combine(PM::torus_radii(std::array<double, 2>{3, 1}), PM::face_population_map(p)));
+  };
+  Point_map tout = fresh(torus, "v:out");
+  Face_map mild = population(torus, 2, false, 3);
   Stopwatch uniform_clock;
-  DEM::spherical_density_equalizing_map(sphere, out, PM::face_population_map(population(sphere, 2, false)));
+  tdem(mild, tout);
   const double uniform = std::max(uniform_clock.seconds(), 0.05);
-  for(double ratio : {1e2, 1e6}) {
-    Face_map p = population(sphere, ratio, true);
+  torus.remove_property_map(mild);
+  for(bool step : {true, false}) {
+    Face_map p = population(torus, step ? 1e4 : 1e6, step, 3);
+    const std::string what = step ? "TDEM step 1e4" : "TDEM bump 1e6";
     Stopwatch clock;
-    const DEM::Map_report r = DEM::spherical_density_equalizing_map(sphere, out, PM::face_population_map(p));
-    check(r.converged(), "SDEM step 1e" + std::to_string(int(std::log10(ratio))) + " converges (" +
-                           DEM::to_string(r.termination) + ")");
-    check(clock.seconds() <= 10 * uniform, "SDEM step: time within 10x of a mild population's");
-    sphere.remove_property_map(p);
+    const DEM::Map_report r = tdem(p, tout);
+    const double t = clock.seconds();
+    check(r.converged(), what + " converges (" + DEM::to_string(r.termination) + ")");
+    check(t <= 10 * uniform, what + ": time " + std::to_string(t) + " s within 10x of a mild population's (" +
+                               std::to_string(uniform) + " s)");
+    torus.remove_property_map(p);
   }
   Mesh ms = to_mesh(with_slivers(bumpy_arrays(4, 0.15), 1e-4, 25));
   Point_map os = fresh(ms, "v:out");
@@ -484,6 +572,7 @@ int main(int argc, char** argv)
     test_scale();
     test_sliver_conformal();
     test_honest_non_convergence();
+    test_most_uniform_map();
     test_cli_honesty();
     test_elongated_starts();
   } else if(mode == "long") {

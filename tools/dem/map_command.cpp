@@ -53,7 +53,7 @@ std::string failure_description(const DEM::Map_report& r)
            r.fallback + ")";
   char buffer[256];
   std::snprintf(buffer, sizeof buffer,
-                "stalled after %zu iteration(s): no fold-over-free step could be found; the last map has no "
+                "stalled after %zu iteration(s): no fold-over-free step could be found; the returned map has no "
                 "fold-over but did not converge (final error %.3g)",
                 r.iterations, r.final_error);
   return buffer;
@@ -181,7 +181,7 @@ int map_command(const std::vector<std::string>& args)
     std::cerr << "dem: warning: " << method_name(opt.method) << " did not converge ("
               << DEM::to_string(run.report.termination) << ", stopping quantity " << run.report.initial_error << " -> "
               << run.report.final_error << ")" << (run.report.message.empty() ? "" : ": " + run.report.message)
-              << "; the output is the last bijective map\n";
+              << "; the output is a bijective map (SDEM, EDEM, TDEM: the most uniform one of the run)\n";
   if(failed) {
     std::cerr << "dem: " << method_name(opt.method) << " failed: " << failure_description(run.report)
               << (run.report.message.empty() ? "" : " (" + run.report.message + ")") << "; "

@@ -38,7 +38,8 @@ public:
 /// written to the output maps when it is thrown.
 ///
 /// A run that starts but cannot improve further (a density-equalizing flow
-/// that stalls) does not throw: it returns its last bijective map with
+/// that stalls) does not throw: it returns a bijective map (the last one, or,
+/// for SDEM, EDEM and TDEM, the most uniform one of the run) with
 /// `Map_report::termination` set to `Termination::STALLED`.
 class Algorithm_failure : public std::runtime_error
 {
@@ -51,8 +52,10 @@ public:
 enum class Termination
 {
   CONVERGED,          ///< the stopping criterion was met
-  MAXIMUM_ITERATIONS, ///< the iteration limit was reached first
-  STALLED,            ///< no fold-over-free step could be found; the last bijective map is returned
+  MAXIMUM_ITERATIONS, ///< the iteration limit was reached first (the density-only flows, SDEM, EDEM and TDEM,
+                      ///< return the most uniform of the run's maps, see `Map_report::message`)
+  STALLED,            ///< no fold-over-free step could be found; the last bijective map is returned, or, by
+                      ///< the density-only flows (SDEM, EDEM, TDEM), the most uniform of the run's maps (see `Map_report::message`)
   CANCELLED,          ///< the progress callback asked to stop; the last bijective map is returned
   NOT_ITERATIVE       ///< a direct (non-iterative) method
 };

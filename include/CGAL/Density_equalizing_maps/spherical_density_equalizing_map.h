@@ -95,8 +95,11 @@ Matrix initial_spherical_map(const Mesh_arrays<TriangleMesh>& a, const NamedPara
 /// With the default population (the face areas of the input) the result is an
 /// area-preserving parameterization. Every step is checked for fold-overs with
 /// exact predicates; the faces of a folding step are untangled locally and the
-/// step is halved if that fails; if no fold-over-free step can be found the last
-/// bijective map is returned and `Map_report::termination` is `Termination::STALLED`.
+/// step is halved if that fails; if no fold-over-free step can be found
+/// `Map_report::termination` is `Termination::STALLED`. A run that does not
+/// converge (stalled or at the iteration limit) returns the most uniform of its
+/// maps (lowest sd/mean of the re-coupled density, the initial map included)
+/// and says in `Map_report::message` when that is not the last one.
 ///
 /// \tparam TriangleMesh a model of `FaceListGraph`
 /// \tparam VertexPointOutMap a writable vertex property map with 3D points as values

@@ -32,6 +32,7 @@
 #include <CGAL/Density_equalizing_maps/internal/stages.h>
 
 #include <functional>
+#include <limits>
 #include <sstream>
 #include <string>
 
@@ -66,6 +67,30 @@ struct Engine_result
   std::string message;
   /// sd/mean of the re-coupled density on the initial and on the returned map
   double initial_density_error = 0, final_density_error = 0;
+  /// the iteration whose map is returned (0: the initial map); below
+  /// `iterations` when a run that did not converge returns its most uniform map
+  std::size_t returned_iteration = 0;
+};
+
+/// A run of a flow with `returns_most_uniform_map` that did not converge
+/// returns the map of lowest re-coupled sd/mean among the initial map and the
+/// accepted steps: later steps of a stalling run can make the density less
+/// uniform (a step population of ratio 1e4: sd/mean 1.30 -> 1.42 after 300
+/// EDEM iterations, benchmark/RESULTS.md), and the user asked for a uniform
+/// density, not for the last step. Keeps a copy of the best map.
+struct Most_uniform_map
+{
+  Matrix map;
+  double density_error = std::numeric_limits<double>::infinity(), stop_error = 0;
+  std::size_t iteration = 0;
+  void offer(const Matrix& x, double density_err, double stop_err, std::size_t it)
+  {
+    if(!(density_err < density_error)) return;
+    map = x;
+    density_error = density_err;
+    stop_error = stop_err;
+    iteration = it;
+  }
 };
 
 /// Says in `res.message` when a run that did not converge returns a map whose
@@ -103,6 +128,10 @@ struct Map_diffusion
 /// Plain density equalization: direction = tangential part of -grad(rho)/rho.
 struct Density_flow
 {
+  /// The flow's only objective is a uniform density, so a run that does not
+  /// converge returns the most uniform of its maps (a flow that also moves
+  /// landmarks or radii sets this to false: there the last map is returned).
+  static constexpr bool returns_most_uniform_map = true;
   void before_step(Matrix&) {}
   /// A flow that has already evaluated the diffusion on exactly this map
   /// (EDEQ's energy does) hands it over instead of the engine redoing it.
@@ -179,6 +208,8 @@ Engine_result run_density_equalization(Domain& domain, Flow& flow, Matrix& x, co
   double error = res.initial_error;
   res.final_error = error;
   if(error < opt.tolerance) { res.termination = Termination::CONVERGED; return res; }
+  Most_uniform_map best;
+  if(Flow::returns_most_uniform_map) best.offer(x, res.initial_density_error, error, 0);
 
   const double dt = opt.time_step;
   Matrix x_new;
@@ -207,8 +238,7 @@ Engine_result run_density_equalization(Domain& domain, Flow& flow, Matrix& x, co
 
     if(!domain.advance(x, d, dt, x_new, res.steps)) {
       res.termination = Termination::STALLED;
-      res.message = "no fold-over-free step was found at iteration " + std::to_string(res.iterations + 1) +
-                    "; the last bijective map is returned";
+      res.message = "no fold-over-free step was found at iteration " + std::to_string(res.iterations + 1);
       x = x_previous;
       break;
     }
@@ -219,8 +249,25 @@ Engine_result run_density_equalization(Domain& domain, Flow& flow, Matrix& x, co
     res.final_density_error = relative_sd(rho);
     error = flow.stop_measure(x_previous, x, opt.stop_on_recoupled_density ? relative_sd(rho) : relative_sd(rho_plus));
     res.final_error = error;
+    res.returned_iteration = res.iterations;
     if(opt.progress && !opt.progress(res.iterations, error)) { res.termination = Termination::CANCELLED; break; }
     if(error < opt.tolerance) { res.termination = Termination::CONVERGED; break; }
+    if(Flow::returns_most_uniform_map) best.offer(x, res.final_density_error, error, res.iterations);
+  }
+  if(Flow::returns_most_uniform_map && (res.termination == Termination::MAXIMUM_ITERATIONS ||
+                                        res.termination == Termination::STALLED) &&
+     best.density_error < res.final_density_error) {
+    std::ostringstream o;
+    o << (res.message.empty() ? "" : "; ") << "the most uniform map, that of iteration " << best.iteration << " of "
+      << res.iterations << " (sd/mean of the density " << best.density_error << " where the last map has "
+      << res.final_density_error << "), is returned";
+    res.message += o.str();
+    x = best.map;
+    res.final_density_error = best.density_error;
+    res.final_error = best.stop_error;
+    res.returned_iteration = best.iteration;
+  } else if(res.termination == Termination::STALLED && !res.message.empty() && res.message[0] == 'n') {
+    res.message += "; the last bijective map is returned";
   }
   note_density_regression(res);
   return res;

@@ -32,6 +32,9 @@ inline Eigen::Matrix3d optimal_rotation(const Matrix& s, const Matrix& q)
 
 struct Landmark_flow
 {
+  /// the landmark term are part of the objective:
+  /// a run that does not converge returns its last map (see Density_flow)
+  static constexpr bool returns_most_uniform_map = false;
   std::vector<Eigen::Index> vertices; // landmark vertices
   Matrix targets;                     // their targets on the unit sphere (rows)
   double alpha = 1, beta = 2, gamma = 5;

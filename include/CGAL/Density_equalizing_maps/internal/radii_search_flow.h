@@ -18,6 +18,9 @@ namespace internal {
 
 struct Radii_search_flow
 {
+  /// the radii are part of the objective:
+  /// a run that does not converge returns its last map (see Density_flow)
+  static constexpr bool returns_most_uniform_map = false;
   const Index_matrix& F;
   Vector population;
   double alpha = 5;
