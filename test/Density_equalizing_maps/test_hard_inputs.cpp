@@ -330,6 +330,40 @@ void check_most_uniform(Mesh& m, Face_map p, const std::string& what, const Run&
   m.remove_property_map(out);
 }
 
+/// SDEM's start is Moebius-corrected towards the population when that is
+/// closer to uniform density: on a smooth bump of ratio 1e4 the start is far
+/// more uniform than the area-corrected conformal map (whose Var(vertex) is
+/// ~58) and the flow converges in few iterations; on a step of ratio 1e4 the
+/// area-corrected map is kept (never a less uniform start).
+void test_population_mobius_start()
+{
+  Mesh sphere = to_mesh(icosphere_arrays(3));
+  Point_map area_start = fresh(sphere, "v:area_start"), start = fresh(sphere, "v:start"), out = fresh(sphere, "v:out");
+  DEM::spherical_conformal_map(sphere, area_start, PM::mobius_area_correction(true));
+  for(bool step : {false, true}) {
+    Face_map p = population(sphere, 1e4, step);
+    const std::string what = std::string("SDEM ") + (step ? "step" : "bump") + " 1e4";
+    const DEM::Map_report r0 = DEM::spherical_density_equalizing_map(
+      sphere, start, PM::combine(PM::face_population_map(p), PM::number_of_iterations(0)));
+    const std::string expected = step ? "conformal" : "conformal_population_moebius";
+    check(r0.start == expected, what + ": Map_report::start is " + expected + " (" + r0.start + ")");
+    const double v_area = vertex_variance(sphere, area_start, p), v_start = vertex_variance(sphere, start, p);
+    std::cout << "  " << what << ": Var(vertex) of the area-corrected start " << v_area << ", of SDEM's start "
+              << v_start << "\n";
+    check(v_start <= v_area * (1 + 1e-9), what + ": the start is at least as uniform as the area-corrected map");
+    if(!step) {
+      check(v_start < 0.1 * v_area, what + ": the population-corrected start carries most of the contrast");
+      const DEM::Map_report r = DEM::spherical_density_equalizing_map(sphere, out, PM::face_population_map(p));
+      check(r.converged() && r.iterations <= 60,
+            what + ": converges from it in at most 60 iterations (" + std::to_string(r.iterations) + ")");
+    }
+    sphere.remove_property_map(p);
+  }
+  sphere.remove_property_map(area_start);
+  sphere.remove_property_map(start);
+  sphere.remove_property_map(out);
+}
+
 void test_most_uniform_map()
 {
   // a step population of ratio 1e4 on icosphere(3): EDEM's last map is less
@@ -393,6 +427,7 @@ void test_cli_honesty()
   write_off(icosphere_arrays(2), "hard_sphere.off");
   code = run_dem("sdem hard_sphere.off --metrics hard_sphere.json", out, err);
   check(contains(read_text("hard_sphere.json"), "\"fallback\": null"), "dem SDEM: fallback null when none");
+  check(contains(read_text("hard_sphere.json"), "\"start\": \"conformal\""), "dem SDEM: the metrics name the start");
   check(!contains(err, "warning"), "dem SDEM on a sphere: no warning");
   // a run cut short: converged false in the JSON, and a warning on stderr
   Mesh m = to_mesh(icosphere_arrays(2));
@@ -431,7 +466,10 @@ void test_elongated_starts()
                 << DEM::to_string(r.termination) << ", sd/mean " << r.initial_error << " -> " << r.final_error << "\n";
       fold_free(m, out, r, what);
       check(r.converged(), what + ": converges (" + DEM::to_string(r.termination) + ")");
-      if(L >= 30) check(contains(r.message, "along the principal axis"), what + ": the axial start is reported");
+      if(L >= 30) {
+        check(contains(r.message, "along the principal axis"), what + ": the axial start is reported");
+        check(r.start == "axial", what + ": Map_report::start is \"axial\" (" + r.start + ")");
+      }
     }
   }
 }
@@ -573,6 +611,7 @@ int main(int argc, char** argv)
     test_sliver_conformal();
     test_honest_non_convergence();
     test_most_uniform_map();
+    test_population_mobius_start();
     test_cli_honesty();
     test_elongated_starts();
   } else if(mode == "long") {

@@ -43,6 +43,7 @@ Metrics compute_metrics(const std::string& method, const CGAL::Density_equalizin
   m.termination = CGAL::Density_equalizing_maps::to_string(report.termination);
   m.fold_overs = report.fold_overs;
   m.fallback = report.fallback;
+  m.start = report.start;
   m.repairs = report.repairs;
 
   const DI::Mean_sd mu = DI::mean_sd(DI::beltrami_magnitude_3d(X, Y, F));
@@ -112,6 +113,7 @@ std::string metrics_json(const Metrics& m)
     << "  \"face_density_var_final\": " << json_number(m.face_density_var_final) << ",\n"
     << "  \"landmark_error\": " << json_number(m.landmark_error) << ",\n"
     << "  \"fallback\": " << (m.fallback.empty() ? std::string("null") : json_string(m.fallback)) << ",\n"
+    << "  \"start\": " << (m.start.empty() ? std::string("null") : json_string(m.start)) << ",\n"
     << "  \"repairs\": " << m.repairs << ",\n"
     << "  \"radii\": ";
   if(m.radii.empty()) o << "null";

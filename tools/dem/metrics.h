@@ -37,6 +37,7 @@ struct Metrics
   double landmark_error = NA;
   std::vector<double> radii;     // empty = null
   std::string fallback;          // Map_report::fallback; empty = null
+  std::string start;             // Map_report::start; empty = null
   std::size_t repairs = 0;       // Map_report::repairs
   std::string termination;       // for the summary line
   /// Keys a subcommand adds to the contract's (remesh, register, cartogram, ...):

@@ -116,6 +116,17 @@ struct Map_report
   /// output is bijective but it is not the landmark-aligned map asked for, and
   /// callers must treat the run as failed
   bool landmarks_given_up = false;
+  /// The starting map an iterative method chose, empty for the direct methods
+  /// and where there is no choice: `"initial_map"` (given by the caller),
+  /// `"input"` (the input already lies on the ellipsoid), `"conformal"` (the
+  /// conformal map with the Moebius area correction, or the ellipsoidal
+  /// conformal map), `"conformal_population_moebius"` (the conformal map
+  /// Moebius-corrected towards the population), `"scaled_sphere"` and
+  /// `"scaled_sphere_population_moebius"` (EDEM: the spherical ones scaled by
+  /// the radii), `"axial"` and `"ellipsoidal"` (the
+  /// starts of elongated surfaces). A density flow takes the start closest to
+  /// uniform density, so this says which one a run took.
+  std::string start;
   /// a human-readable note on anything unusual (e.g. why a run stalled)
   std::string message;
 

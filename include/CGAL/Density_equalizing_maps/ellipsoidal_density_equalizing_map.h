@@ -30,8 +30,8 @@ constexpr double on_ellipsoid_tolerance = 1e-3;
 /// experiments of paper 000 (a cartogram on an ellipsoid starts from the
 /// ellipsoid, not from a conformal re-parameterization of it); else the better
 /// of two bijective candidates: the ellipsoidal conformal map with the same
-/// radii, and the Moebius-corrected spherical conformal map scaled by the radii
-/// (a linear image of a bijective spherical map, hence bijective). "Better" is
+/// radii, and the Moebius-corrected spherical conformal map (population_mobius_start())
+/// scaled by the radii (a linear image of a bijective spherical map, hence bijective). "Better" is
 /// the one whose density (population / image area) is closer to uniform: on
 /// strongly anisotropic ellipsoids the ellipsoidal conformal map has a large
 /// area distortion and the flow from it is slow to equalize. An elongated
@@ -53,6 +53,7 @@ Matrix initial_ellipsoidal_map(const TriangleMesh& tm, const Mesh_arrays<Triangl
     if(folds > 0)
       throw Invalid_input("the initial ellipsoidal map is not bijective: " + std::to_string(folds) +
                           " fold-overs (exact count)");
+    fallbacks.start = "initial_map";
     return x;
   } else {
     if(max_ellipsoid_deviation(a.input_positions(), radii) <= on_ellipsoid_tolerance) {
@@ -60,6 +61,7 @@ Matrix initial_ellipsoidal_map(const TriangleMesh& tm, const Mesh_arrays<Triangl
       project_to_ellipsoid(x, radii);
       if(count_inverted_faces_about_center(x, a.F) == 0) {
         note = "the input lies on the ellipsoid: started from it. ";
+        fallbacks.start = "input";
         return x;
       }
     }
@@ -68,8 +70,9 @@ Matrix initial_ellipsoidal_map(const TriangleMesh& tm, const Mesh_arrays<Triangl
       return relative_sd(densities(population, area, face_to_vertex(area, a.F, y.rows())).vertex);
     };
     const Flash_result flash = flash_spherical_map(a.X, a.F, solver);
+    bool by_population = false;
     const Matrix scaled_sphere =
-      Ellipsoid_domain::from_unit_sphere(mobius_area_correction(a.X, a.F, flash.S), radii);
+      Ellipsoid_domain::from_unit_sphere(population_mobius_start(a.X, a.F, flash.S, population, by_population), radii);
     typedef CGAL::Exact_predicates_inexact_constructions_kernel::Point_3 Point;
     auto vim = CGAL::get_initialized_vertex_index_map(tm, np);
     boost::vector_property_map<Point, decltype(vim)> fecm(a.vertices.size(), vim);
@@ -99,15 +102,18 @@ Matrix initial_ellipsoidal_map(const TriangleMesh& tm, const Mesh_arrays<Triangl
         if(axial_error < std::min(fecm_error, scaled_error)) {
           note = "started from the map along the principal axis (an elongated surface: closer to uniform density "
                  "than both conformal maps). ";
+          fallbacks.start = "axial";
           return y;
         }
       }
     }
     if(fecm_error <= scaled_error && std::isfinite(fecm_error)) {
       fallbacks.repairs += conformal.repairs;
+      fallbacks.start = "conformal";
       return x;
     }
     fallbacks.repairs += flash.repairs;
+    fallbacks.start = by_population ? "scaled_sphere_population_moebius" : "scaled_sphere";
     note = "started from the scaled spherical conformal map (closer to uniform density than the ellipsoidal "
            "conformal map). ";
     return scaled_sphere;

@@ -22,7 +22,9 @@ namespace internal {
 
 /// The starting sphere: the user's `initial_map` (checked: finite, no point at
 /// the center, bijective; `Invalid_input` otherwise), else the spherical
-/// conformal map with Moebius area correction (paper 001), which is bijective
+/// conformal map with the Moebius correction of paper 001, towards the
+/// population when that is closer to uniform density (population_mobius_start()),
+/// which is bijective
 /// in exact arithmetic: if its exact fold-over count is not 0 the computation
 /// failed (`Algorithm_failure`), the input is not at fault. Given the
 /// `population` (SDEM), an elongated surface also tries axial_start() and
@@ -41,6 +43,7 @@ Matrix initial_spherical_map(const Mesh_arrays<TriangleMesh>& a, const NamedPara
     validate_spherical_points(S, "the initial map");
     normalize_rows(S);
     const std::size_t folds = count_inverted_faces_about_center(S, a.F);
+    report.start = "initial_map";
     if(folds > 0)
       throw Invalid_input("the initial map is not bijective: " + std::to_string(folds) + " fold-overs (exact count)");
   } else {
@@ -50,7 +53,10 @@ Matrix initial_spherical_map(const Mesh_arrays<TriangleMesh>& a, const NamedPara
     report.add_fallback(flash.fallback.empty() ? "" : "initial map: " + flash.fallback);
     report.repairs += flash.repairs;
     begin_stage(stage, "Moebius area correction");
-    S = mobius_area_correction(a.X, a.F, flash.S);
+    bool by_population = false;
+    S = population ? population_mobius_start(a.X, a.F, flash.S, *population, by_population)
+                   : mobius_area_correction(a.X, a.F, flash.S);
+    report.start = by_population ? "conformal_population_moebius" : "conformal";
     const std::size_t folds = count_inverted_faces_about_center(S, a.F);
     const Principal_frame frame = principal_frame(a.X);
     if(population && frame.extent.maxCoeff() >= elongation_of_crowding * frame.extent.minCoeff()) {
@@ -58,7 +64,7 @@ Matrix initial_spherical_map(const Mesh_arrays<TriangleMesh>& a, const NamedPara
       const double conformal = folds > 0 ? std::numeric_limits<double>::infinity()
                                          : mean_abs_log_density(*population, face_areas(S, a.F));
       double best = conformal;
-      auto consider = [&](Matrix candidate, const char* name) {
+      auto consider = [&](Matrix candidate, const char* start, const char* name) {
         if(candidate.rows() == 0) return;
         const double spread = mean_abs_log_density(*population, face_areas(candidate, a.F));
         if(!(spread < best)) return;
@@ -68,10 +74,11 @@ Matrix initial_spherical_map(const Mesh_arrays<TriangleMesh>& a, const NamedPara
         else note << conformal << " for the Moebius-corrected conformal map)";
         report.message = note.str();
         best = spread;
+        report.start = start;
         S = std::move(candidate);
       };
-      consider(axial_start(a.X, a.F, frame), "along the principal axis, latitudes by area");
-      consider(ellipsoidal_start(a.X, a.F, frame, flash, solver),
+      consider(axial_start(a.X, a.F, frame), "axial", "along the principal axis, latitudes by area");
+      consider(ellipsoidal_start(a.X, a.F, frame, flash, solver), "ellipsoidal",
                "the conformal map onto the bounding-box ellipsoid scaled onto the sphere");
       if(best < conformal) return S;
     }
@@ -118,7 +125,9 @@ Matrix initial_spherical_map(const Mesh_arrays<TriangleMesh>& a, const NamedPara
 ///   \cgalParamNEnd
 ///   \cgalParamNBegin{initial_map}
 ///     \cgalParamDescription{a readable vertex property map with a bijective starting map onto the sphere}
-///     \cgalParamDefault{`spherical_conformal_map()` with Moebius area correction}
+///     \cgalParamDefault{`spherical_conformal_map()` with Moebius area correction, or, when that brings the density
+///       closer to uniform, followed by the Moebius transformation that minimizes the mean |log density| (its
+///       dilation limited so that no face turns over)}
 ///   \cgalParamNEnd
 ///   \cgalParamNBegin{time_step}
 ///     \cgalParamDescription{the step \f$\delta t\f$ of diffusion and advection}

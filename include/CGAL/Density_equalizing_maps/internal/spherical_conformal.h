@@ -257,12 +257,38 @@ Eigen::Vector3d nelder_mead_3(Objective f, Eigen::Vector3d x0, const Eigen::Vect
   return x[best];
 }
 
-/// Moebius area correction: the Moebius transformation of the spherical map S
-/// minimizing the mean |log area ratio| against the input X. Returns the corrected map.
-inline Matrix mobius_area_correction(const Matrix& X, const Index_matrix& F, const Matrix& S,
-                                     double* objective_before = nullptr, double* objective_after = nullptr)
+/// The fraction t in [0, 1] of the dilation `xi[2]` (the rotation part kept)
+/// that keeps every face of `apply(xi)` positively oriented about the centre,
+/// by bisection; 1 when the full dilation does. A strong dilation (a
+/// population far from uniform) can stretch one face over more than a
+/// hemisphere, where its chordal triangle turns over: such a Moebius map is no
+/// longer a fold-free map of the mesh.
+template <class Apply>
+double fold_free_dilation_fraction(const Eigen::Vector3d& xi, const Index_matrix& F, const Matrix& q, Apply apply)
 {
-  const Vector source_area = face_areas(X, F);
+  auto oriented = [&](double t) {
+    apply(Eigen::Vector3d(xi[0], xi[1], t * xi[2]));
+    for(Eigen::Index k = 0; k < F.rows(); ++k)
+      if(!(row3(q, F(k, 0)).dot(row3(q, F(k, 1)).cross(row3(q, F(k, 2)))) > 0)) return false;
+    return true;
+  };
+  if(oriented(1.)) return 1.;
+  double lo = 0, hi = 1;
+  for(int i = 0; i < 30; ++i) (oriented(0.5 * (lo + hi)) ? lo : hi) = 0.5 * (lo + hi);
+  return 0.9 * lo; // a margin: the caller's exact test must pass too
+}
+
+/// Moebius correction towards target face areas: the Moebius transformation of
+/// the spherical map S minimizing the mean |log(normalized image area /
+/// normalized target area)|, with the dilation limited so that no face turns
+/// over (fold_free_dilation_fraction()). The targets are the input's face
+/// areas for the area correction of paper 001, the population for the start
+/// of a density-equalizing map (which a Moebius map brings closest to uniform
+/// density at no risk of folding: every face keeps its angles). Never worse
+/// than S itself on the objective. Returns the corrected map.
+inline Matrix mobius_correction(const Vector& target_area, const Index_matrix& F, const Matrix& S,
+                                double* objective_before = nullptr, double* objective_after = nullptr)
+{
   const Complex_vector z = north_chart(S);
   Matrix q(S.rows(), 3);
   auto apply = [&](const Eigen::Vector3d& xi, const std::vector<Eigen::Index>& vertices) {
@@ -279,12 +305,13 @@ inline Matrix mobius_area_correction(const Matrix& X, const Index_matrix& F, con
       return mean_abs_log_area_ratio(smp.source_area, face_areas(q, smp.F));
     };
   };
-  const Face_sample all = face_sample(F, source_area, S.rows(), 1);
-  const Face_sample coarse = face_sample(F, source_area, S.rows(), F.rows() / 4000);
+  const Face_sample all = face_sample(F, target_area, S.rows(), 1);
+  const Face_sample coarse = face_sample(F, target_area, S.rows(), F.rows() / 4000);
   const double before = objective_on(all)(Eigen::Vector3d::Zero());
   Eigen::Vector3d best =
     nelder_mead_3(objective_on(coarse), Eigen::Vector3d::Zero(), Eigen::Vector3d(0.2, 0.2, 0.5), 400, 1e-8);
   best = nelder_mead_3(objective_on(all), best, Eigen::Vector3d(0.02, 0.02, 0.05), 120, 1e-8);
+  best[2] *= fold_free_dilation_fraction(best, F, q, [&](const Eigen::Vector3d& xi) { apply(xi, all.vertices); });
   const double after = objective_on(all)(best);
   if(objective_before) *objective_before = before;
   if(!(after <= before)) { // never make it worse
@@ -294,6 +321,14 @@ inline Matrix mobius_area_correction(const Matrix& X, const Index_matrix& F, con
   if(objective_after) *objective_after = after;
   apply(best, all.vertices);
   return q;
+}
+
+/// Moebius area correction (paper 001): mobius_correction() towards the face
+/// areas of the input X.
+inline Matrix mobius_area_correction(const Matrix& X, const Index_matrix& F, const Matrix& S,
+                                     double* objective_before = nullptr, double* objective_after = nullptr)
+{
+  return mobius_correction(face_areas(X, F), F, S, objective_before, objective_after);
 }
 
 } // namespace internal
