@@ -15,6 +15,11 @@ factorization.
   python3 benchmark/floor_table.py MESH.off [MESH2.off ...] [--repeat 5]
       [--methods spherical-conformal spherical-conformal:--mobius ellipsoidal-conformal sdem]
       [--torus R r]   (then the default methods are tdem and toroidal-parameterization)
+      [--old-build-dir DIR]  (also runs DIR/bin/dem, interleaved with the new one
+                              run by run, and prints its median and peak memory)
+
+The peak resident memory of each dem run (the process's maximum RSS, from
+wait4) is printed as MiB and bytes per face (the largest over the repeats).
 
 A method may carry dem options after a colon, separated by commas:
 "spherical-conformal:--mobius", "edem:--radii,1,1,2".
@@ -34,6 +39,7 @@ def run_floor(exe, mesh, repeat):
 
 
 def run_dem(dem, method_spec, mesh, extra, threads):
+    """(seconds of the mapping, peak RSS in bytes, exit status)."""
     name, _, opts = method_spec.partition(":")
     args = [dem, name, mesh] + [o for o in opts.split(",") if o] + extra
     env = dict(os.environ)
@@ -41,11 +47,15 @@ def run_dem(dem, method_spec, mesh, extra, threads):
         for k in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS"):
             env[k] = str(threads)
     with tempfile.NamedTemporaryFile(suffix=".json") as m:
-        p = subprocess.run(args + ["--metrics", m.name, "--quiet"], capture_output=True, text=True, env=env)
+        p = subprocess.Popen(args + ["--metrics", m.name, "--quiet"], stdout=subprocess.DEVNULL,
+                             stderr=subprocess.DEVNULL, env=env)
+        _, status, usage = os.wait4(p.pid, 0)
+        p.returncode = os.waitstatus_to_exitcode(status)
+        rss = usage.ru_maxrss * 1024  # kilobytes on Linux
         if p.returncode != 0:
-            return None, p.returncode
+            return None, rss, p.returncode
         with open(m.name) as f:
-            return json.load(f)["seconds"], 0
+            return json.load(f)["seconds"], rss, 0
 
 
 def main():
@@ -56,36 +66,47 @@ def main():
     ap.add_argument("--torus", nargs=2, metavar=("R", "r"))
     ap.add_argument("--build-dir", default=os.environ.get("DEM_BUILD_DIR", "build"))
     ap.add_argument("--threads", type=int, default=0, help="OMP/BLAS threads for dem (0: leave as is)")
+    ap.add_argument("--old-build-dir", help="a build of the old sources: its dem runs interleaved with the new one")
     a = ap.parse_args()
     floor_exe = os.path.join(a.build_dir, "bin", "factorization_floor")
-    dem = os.path.join(a.build_dir, "bin", "dem")
+    builds = [("new", os.path.join(a.build_dir, "bin", "dem"))]
+    if a.old_build_dir:
+        builds.append(("old", os.path.join(a.old_build_dir, "bin", "dem")))
     extra = ["--torus", a.torus[0], a.torus[1]] if a.torus else []
     methods = a.methods or (["tdem", "toroidal-parameterization"] if a.torus else
                             ["spherical-conformal", "spherical-conformal:--mobius", "ellipsoidal-conformal", "sdem"])
-    print("| mesh | faces | full factorization (s) | numeric only (s) | method | median (s) | x floor |")
-    print("|---|---:|---:|---:|---|---:|---:|")
+    runs = [(b, m) for m in methods for b, _ in builds]
+    print("| mesh | faces | full factorization (s) | numeric only (s) | method | build | median (s) | x floor | "
+          "peak RSS (MiB) | B/face |")
+    print("|---|---:|---:|---:|---|---|---:|---:|---:|---:|")
     for mesh in a.meshes:
         floor = run_floor(floor_exe, mesh, a.repeat)
-        times = {m: [] for m in methods}
+        times = {r: [] for r in runs}
+        peak = {r: 0 for r in runs}
         failed = {}
         for _ in range(a.repeat):
             for m in methods:
-                if m in failed:
-                    continue
-                t, rc = run_dem(dem, m, mesh, extra, a.threads)
-                if t is None:
-                    failed[m] = rc
-                else:
-                    times[m].append(t)
+                for b, dem in builds:
+                    r = (b, m)
+                    if r in failed:
+                        continue
+                    t, rss, rc = run_dem(dem, m, mesh, extra, a.threads)
+                    peak[r] = max(peak[r], rss)
+                    if t is None:
+                        failed[r] = rc
+                    else:
+                        times[r].append(t)
         full = floor["full_factorization_seconds"]
-        for i, m in enumerate(methods):
-            head = (f"| {os.path.basename(mesh)} | {floor['faces']} | {full:.3f} | "
+        faces = floor["faces"]
+        for i, (b, m) in enumerate(runs):
+            head = (f"| {os.path.basename(mesh)} | {faces} | {full:.3f} | "
                     f"{floor['numeric_factorization_seconds']:.3f} |") if i == 0 else "| | | | |"
-            if m in failed:
-                print(f"{head} {m} | exit {failed[m]} | |")
+            memory = f"{peak[(b, m)] / 2**20:.0f} | {peak[(b, m)] / faces:.0f}"
+            if (b, m) in failed:
+                print(f"{head} {m} | {b} | exit {failed[(b, m)]} | | {memory} |")
             else:
-                med = statistics.median(times[m])
-                print(f"{head} {m} | {med:.3f} | {med / full:.2f} |")
+                med = statistics.median(times[(b, m)])
+                print(f"{head} {m} | {b} | {med:.3f} | {med / full:.2f} | {memory} |")
         sys.stdout.flush()
 
 
