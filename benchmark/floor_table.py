@@ -18,7 +18,9 @@ factorization.
       [--old-build-dir DIR]  (also runs DIR/bin/dem, interleaved with the new one
                               run by run, and prints its median and peak memory)
 
-The peak resident memory of each dem run (the process's maximum RSS, from
+The median CPU time of the mapping (from dem's summary line; one thread:
+on a busy machine closer to the unloaded wall time than the wall time) is
+printed beside the wall time. The peak resident memory of each dem run (the process's maximum RSS, from
 wait4) is printed as MiB and bytes per face (the largest over the repeats).
 
 A method may carry dem options after a colon, separated by commas:
@@ -27,6 +29,7 @@ A method may carry dem options after a colon, separated by commas:
 import argparse
 import json
 import os
+import re
 import statistics
 import subprocess
 import sys
@@ -39,7 +42,7 @@ def run_floor(exe, mesh, repeat):
 
 
 def run_dem(dem, method_spec, mesh, extra, threads):
-    """(seconds of the mapping, peak RSS in bytes, exit status)."""
+    """(seconds of the mapping, its CPU seconds, peak RSS in bytes, exit status)."""
     name, _, opts = method_spec.partition(":")
     args = [dem, name, mesh] + [o for o in opts.split(",") if o] + extra
     env = dict(os.environ)
@@ -47,15 +50,21 @@ def run_dem(dem, method_spec, mesh, extra, threads):
         for k in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS"):
             env[k] = str(threads)
     with tempfile.NamedTemporaryFile(suffix=".json") as m:
-        p = subprocess.Popen(args + ["--metrics", m.name, "--quiet"], stdout=subprocess.DEVNULL,
-                             stderr=subprocess.DEVNULL, env=env)
-        _, status, usage = os.wait4(p.pid, 0)
+        with tempfile.TemporaryFile(mode="w+") as out:
+            p = subprocess.Popen(args + ["--metrics", m.name, "--quiet"], stdout=out,
+                                 stderr=subprocess.DEVNULL, env=env)
+            _, status, usage = os.wait4(p.pid, 0)
+            out.seek(0)
+            summary = out.read()
         p.returncode = os.waitstatus_to_exitcode(status)
         rss = usage.ru_maxrss * 1024  # kilobytes on Linux
         if p.returncode != 0:
-            return None, rss, p.returncode
+            return None, None, rss, p.returncode
+        # the summary line says "(X s CPU)": the mapping's CPU time, a better
+        # estimate of its unloaded wall time on a busy machine (one thread)
+        cpu = re.search(r"\(([0-9.eE+-]+) s CPU\)", summary)
         with open(m.name) as f:
-            return json.load(f)["seconds"], rss, 0
+            return json.load(f)["seconds"], float(cpu.group(1)) if cpu else float("nan"), rss, 0
 
 
 def main():
@@ -77,11 +86,12 @@ def main():
                             ["spherical-conformal", "spherical-conformal:--mobius", "ellipsoidal-conformal", "sdem"])
     runs = [(b, m) for m in methods for b, _ in builds]
     print("| mesh | faces | full factorization (s) | numeric only (s) | method | build | median (s) | x floor | "
-          "peak RSS (MiB) | B/face |")
-    print("|---|---:|---:|---:|---|---|---:|---:|---:|---:|")
+          "median CPU (s) | peak RSS (MiB) | B/face |")
+    print("|---|---:|---:|---:|---|---|---:|---:|---:|---:|---:|")
     for mesh in a.meshes:
         floor = run_floor(floor_exe, mesh, a.repeat)
         times = {r: [] for r in runs}
+        cpus = {r: [] for r in runs}
         peak = {r: 0 for r in runs}
         failed = {}
         for _ in range(a.repeat):
@@ -90,12 +100,13 @@ def main():
                     r = (b, m)
                     if r in failed:
                         continue
-                    t, rss, rc = run_dem(dem, m, mesh, extra, a.threads)
+                    t, cpu, rss, rc = run_dem(dem, m, mesh, extra, a.threads)
                     peak[r] = max(peak[r], rss)
                     if t is None:
                         failed[r] = rc
                     else:
                         times[r].append(t)
+                        cpus[r].append(cpu)
         full = floor["full_factorization_seconds"]
         faces = floor["faces"]
         for i, (b, m) in enumerate(runs):
@@ -103,10 +114,11 @@ def main():
                     f"{floor['numeric_factorization_seconds']:.3f} |") if i == 0 else "| | | | |"
             memory = f"{peak[(b, m)] / 2**20:.0f} | {peak[(b, m)] / faces:.0f}"
             if (b, m) in failed:
-                print(f"{head} {m} | {b} | exit {failed[(b, m)]} | | {memory} |")
+                print(f"{head} {m} | {b} | exit {failed[(b, m)]} | | | {memory} |")
             else:
                 med = statistics.median(times[(b, m)])
-                print(f"{head} {m} | {b} | {med:.3f} | {med / full:.2f} | {memory} |")
+                cpu = statistics.median(cpus[(b, m)])
+                print(f"{head} {m} | {b} | {med:.3f} | {med / full:.2f} | {cpu:.3f} | {memory} |")
         sys.stdout.flush()
 
 
