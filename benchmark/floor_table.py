@@ -15,6 +15,13 @@ factorization.
   python3 benchmark/floor_table.py MESH.off [MESH2.off ...] [--repeat 5]
       [--methods spherical-conformal spherical-conformal:--mobius ellipsoidal-conformal sdem]
       [--torus R r]   (then the default methods are tdem and toroidal-parameterization)
+      [--old-build-dir DIR]  (also runs DIR/bin/dem, interleaved with the new one
+                              run by run, and prints its median and peak memory)
+
+The median CPU time of the mapping (from dem's summary line; one thread:
+on a busy machine closer to the unloaded wall time than the wall time) is
+printed beside the wall time. The peak resident memory of each dem run (the process's maximum RSS, from
+wait4) is printed as MiB and bytes per face (the largest over the repeats).
 
 A method may carry dem options after a colon, separated by commas:
 "spherical-conformal:--mobius", "edem:--radii,1,1,2".
@@ -22,6 +29,7 @@ A method may carry dem options after a colon, separated by commas:
 import argparse
 import json
 import os
+import re
 import statistics
 import subprocess
 import sys
@@ -34,6 +42,7 @@ def run_floor(exe, mesh, repeat):
 
 
 def run_dem(dem, method_spec, mesh, extra, threads):
+    """(seconds of the mapping, its CPU seconds, peak RSS in bytes, exit status)."""
     name, _, opts = method_spec.partition(":")
     args = [dem, name, mesh] + [o for o in opts.split(",") if o] + extra
     env = dict(os.environ)
@@ -41,11 +50,21 @@ def run_dem(dem, method_spec, mesh, extra, threads):
         for k in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS"):
             env[k] = str(threads)
     with tempfile.NamedTemporaryFile(suffix=".json") as m:
-        p = subprocess.run(args + ["--metrics", m.name, "--quiet"], capture_output=True, text=True, env=env)
+        with tempfile.TemporaryFile(mode="w+") as out:
+            p = subprocess.Popen(args + ["--metrics", m.name, "--quiet"], stdout=out,
+                                 stderr=subprocess.DEVNULL, env=env)
+            _, status, usage = os.wait4(p.pid, 0)
+            out.seek(0)
+            summary = out.read()
+        p.returncode = os.waitstatus_to_exitcode(status)
+        rss = usage.ru_maxrss * 1024  # kilobytes on Linux
         if p.returncode != 0:
-            return None, p.returncode
+            return None, None, rss, p.returncode
+        # the summary line says "(X s CPU)": the mapping's CPU time, a better
+        # estimate of its unloaded wall time on a busy machine (one thread)
+        cpu = re.search(r"\(([0-9.eE+-]+) s CPU\)", summary)
         with open(m.name) as f:
-            return json.load(f)["seconds"], 0
+            return json.load(f)["seconds"], float(cpu.group(1)) if cpu else float("nan"), rss, 0
 
 
 def main():
@@ -56,36 +75,50 @@ def main():
     ap.add_argument("--torus", nargs=2, metavar=("R", "r"))
     ap.add_argument("--build-dir", default=os.environ.get("DEM_BUILD_DIR", "build"))
     ap.add_argument("--threads", type=int, default=0, help="OMP/BLAS threads for dem (0: leave as is)")
+    ap.add_argument("--old-build-dir", help="a build of the old sources: its dem runs interleaved with the new one")
     a = ap.parse_args()
     floor_exe = os.path.join(a.build_dir, "bin", "factorization_floor")
-    dem = os.path.join(a.build_dir, "bin", "dem")
+    builds = [("new", os.path.join(a.build_dir, "bin", "dem"))]
+    if a.old_build_dir:
+        builds.append(("old", os.path.join(a.old_build_dir, "bin", "dem")))
     extra = ["--torus", a.torus[0], a.torus[1]] if a.torus else []
     methods = a.methods or (["tdem", "toroidal-parameterization"] if a.torus else
                             ["spherical-conformal", "spherical-conformal:--mobius", "ellipsoidal-conformal", "sdem"])
-    print("| mesh | faces | full factorization (s) | numeric only (s) | method | median (s) | x floor |")
-    print("|---|---:|---:|---:|---|---:|---:|")
+    runs = [(b, m) for m in methods for b, _ in builds]
+    print("| mesh | faces | full factorization (s) | numeric only (s) | method | build | median (s) | x floor | "
+          "median CPU (s) | peak RSS (MiB) | B/face |")
+    print("|---|---:|---:|---:|---|---|---:|---:|---:|---:|---:|")
     for mesh in a.meshes:
         floor = run_floor(floor_exe, mesh, a.repeat)
-        times = {m: [] for m in methods}
+        times = {r: [] for r in runs}
+        cpus = {r: [] for r in runs}
+        peak = {r: 0 for r in runs}
         failed = {}
         for _ in range(a.repeat):
             for m in methods:
-                if m in failed:
-                    continue
-                t, rc = run_dem(dem, m, mesh, extra, a.threads)
-                if t is None:
-                    failed[m] = rc
-                else:
-                    times[m].append(t)
+                for b, dem in builds:
+                    r = (b, m)
+                    if r in failed:
+                        continue
+                    t, cpu, rss, rc = run_dem(dem, m, mesh, extra, a.threads)
+                    peak[r] = max(peak[r], rss)
+                    if t is None:
+                        failed[r] = rc
+                    else:
+                        times[r].append(t)
+                        cpus[r].append(cpu)
         full = floor["full_factorization_seconds"]
-        for i, m in enumerate(methods):
-            head = (f"| {os.path.basename(mesh)} | {floor['faces']} | {full:.3f} | "
+        faces = floor["faces"]
+        for i, (b, m) in enumerate(runs):
+            head = (f"| {os.path.basename(mesh)} | {faces} | {full:.3f} | "
                     f"{floor['numeric_factorization_seconds']:.3f} |") if i == 0 else "| | | | |"
-            if m in failed:
-                print(f"{head} {m} | exit {failed[m]} | |")
+            memory = f"{peak[(b, m)] / 2**20:.0f} | {peak[(b, m)] / faces:.0f}"
+            if (b, m) in failed:
+                print(f"{head} {m} | {b} | exit {failed[(b, m)]} | | | {memory} |")
             else:
-                med = statistics.median(times[m])
-                print(f"{head} {m} | {med:.3f} | {med / full:.2f} |")
+                med = statistics.median(times[(b, m)])
+                cpu = statistics.median(cpus[(b, m)])
+                print(f"{head} {m} | {b} | {med:.3f} | {med / full:.2f} | {cpu:.3f} | {memory} |")
         sys.stdout.flush()
 
 

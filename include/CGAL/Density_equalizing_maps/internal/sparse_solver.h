@@ -159,6 +159,7 @@ public:
                               std::equal(A.outerIndexPtr(), A.outerIndexPtr() + A.outerSize() + 1, m_outer.begin()) &&
                               std::equal(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros(), m_inner.begin());
     if(!same_pattern) {
+      choose_fill_reducing_ordering(s);
       s.analyzePattern(A);
       m_rows = A.rows(); m_nnz = A.nonZeros();
       m_outer.assign(A.outerIndexPtr(), A.outerIndexPtr() + A.outerSize() + 1);
@@ -185,6 +186,30 @@ public:
   const Traits& traits() const { return m_traits; }
 
 private:
+  /// CHOLMOD's default choice of ordering (`nmethods` 0) computes the
+  /// minimum-degree ordering (AMD) and, when its fill is high (mesh
+  /// Laplacians somewhere between 100,000 and 1M faces and up), a METIS
+  /// ordering as well, and keeps the better one. METIS costs more than the
+  /// factorization time it saves: on a 1M-face mesh (one core, loaded
+  /// machine) AMD 0.4 s + numeric 2.0-2.3 s, METIS 4.0 s + numeric 1.9-2.0 s
+  /// (benchmark/RESULTS.md, "Speed at the floor"). So unless the user chose
+  /// the methods (`nmethods` not 0), the package asks for AMD alone; where
+  /// CHOLMOD would not try METIS this is exactly its own choice.
+  template <class Solver>
+  static void choose_fill_reducing_ordering(Solver& s)
+  {
+#ifdef CGAL_DEM_USE_CHOLMOD
+    if constexpr(Is_cholmod_solver<Solver>::value) {
+      cholmod_common& c = s.cholmod();
+      if(c.nmethods == 0) {
+        c.nmethods = 1;
+        c.method[0].ordering = CHOLMOD_AMD;
+      }
+    }
+#endif
+    (void)s;
+  }
+
   Traits m_traits;
   bool m_analyzed = false;
   Eigen::Index m_rows = 0, m_nnz = 0;
