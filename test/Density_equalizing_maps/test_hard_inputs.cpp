@@ -26,6 +26,7 @@
 #include <sys/wait.h>
 
 #include <cstdlib>
+#include <functional>
 
 namespace DEM = CGAL::Density_equalizing_maps;
 namespace PM = CGAL::Density_equalizing_maps::parameters;
@@ -364,6 +365,22 @@ void test_population_mobius_start()
   sphere.remove_property_map(out);
 }
 
+/// SDEM or EDEM (radii 1, 1, 1) on `sphere` with population `p`, as a
+/// `run(out, iterations)` of check_most_uniform().
+std::function<DEM::Map_report(Point_map, int)> sphere_flow(Method k, Mesh& sphere, Face_map p)
+{
+  return [k, &sphere, p](Point_map out, int iterations) {
+    const auto np = PM::combine(PM::face_population_map(p), PM::ellipsoid_radii(std::array<double, 3>{1, 1, 1}));
+    if(iterations >= 0) {
+      const auto np0 = PM::combine(np, PM::number_of_iterations(iterations));
+      return k == Method::SDEM ? DEM::spherical_density_equalizing_map(sphere, out, np0)
+                               : DEM::ellipsoidal_density_equalizing_map(sphere, out, np0);
+    }
+    return k == Method::SDEM ? DEM::spherical_density_equalizing_map(sphere, out, np)
+                             : DEM::ellipsoidal_density_equalizing_map(sphere, out, np);
+  };
+}
+
 void test_most_uniform_map()
 {
   // a step population of ratio 1e4 on icosphere(3): EDEM's last map is less
@@ -371,16 +388,7 @@ void test_most_uniform_map()
   Mesh sphere = to_mesh(icosphere_arrays(3));
   Face_map p = population(sphere, 1e4, true);
   for(Method k : {Method::SDEM, Method::EDEM})
-    check_most_uniform(sphere, p, std::string(name_of(k)) + " step 1e4", [&](Point_map out, int iterations) {
-      const auto np = PM::combine(PM::face_population_map(p), PM::ellipsoid_radii(std::array<double, 3>{1, 1, 1}));
-      if(iterations >= 0) {
-        const auto np0 = PM::combine(np, PM::number_of_iterations(iterations));
-        return k == Method::SDEM ? DEM::spherical_density_equalizing_map(sphere, out, np0)
-                                 : DEM::ellipsoidal_density_equalizing_map(sphere, out, np0);
-      }
-      return k == Method::SDEM ? DEM::spherical_density_equalizing_map(sphere, out, np)
-                               : DEM::ellipsoidal_density_equalizing_map(sphere, out, np);
-    });
+    check_most_uniform(sphere, p, std::string(name_of(k)) + " step 1e4", sphere_flow(k, sphere, p));
   sphere.remove_property_map(p);
 }
 
@@ -506,16 +514,7 @@ void test_extreme_populations()
       const std::string kind = std::string(step ? "step" : "bump") + " 1e" + std::to_string(int(std::log10(ratio)));
       Face_map p = population(sphere, ratio, step);
       for(Method k : {Method::SDEM, Method::EDEM})
-        check_most_uniform(sphere, p, std::string(name_of(k)) + " " + kind, [&](Point_map out, int iterations) {
-          const auto np = PM::combine(PM::face_population_map(p), PM::ellipsoid_radii(std::array<double, 3>{1, 1, 1}));
-          if(iterations >= 0) {
-            const auto np0 = PM::combine(np, PM::number_of_iterations(iterations));
-            return k == Method::SDEM ? DEM::spherical_density_equalizing_map(sphere, out, np0)
-                                     : DEM::ellipsoidal_density_equalizing_map(sphere, out, np0);
-          }
-          return k == Method::SDEM ? DEM::spherical_density_equalizing_map(sphere, out, np)
-                                   : DEM::ellipsoidal_density_equalizing_map(sphere, out, np);
-        });
+        check_most_uniform(sphere, p, std::string(name_of(k)) + " " + kind, sphere_flow(k, sphere, p));
       sphere.remove_property_map(p);
     }
   Mesh torus = to_mesh(torus_arrays(3, 1, 40, 20));
