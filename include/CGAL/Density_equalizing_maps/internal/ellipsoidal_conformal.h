@@ -361,7 +361,7 @@ public:
     m_chart = ellipsoidal_chart(X, F, poles, flash);
     m_P = to_planar(m_chart.p);
     m_open_assembler.build(m_chart.open_faces, X.rows());
-    m_psi_solver = prototype.clone();
+    m_psi_solver = clone_with_fast_ordering(prototype); // one factorization per radii
     breadth_first_vertex_order(F, X.rows(), m_order, m_parent);
     // Pinned set of psi (ALGORITHMS 5.7 [Rec]): the north face, the
     // max(3, min(50, floor(n/100))) vertices of largest |p|, and the corners of

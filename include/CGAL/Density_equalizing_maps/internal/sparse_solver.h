@@ -52,11 +52,27 @@ typedef CGAL::Eigen_solver_traits<Eigen::SimplicialLDLT<CGAL::Eigen_sparse_matri
 
 namespace internal {
 
+/// How much a solver may spend on the fill-reducing ordering of a new
+/// sparsity pattern.
+enum class Ordering_effort
+{
+  /// the solver's own choice (CHOLMOD: minimum degree, and METIS as well when
+  /// the fill is high): pays off for a pattern factored many times (the
+  /// density-equalizing flows)
+  thorough,
+  /// a cheap ordering (CHOLMOD: minimum degree alone), for a pattern factored
+  /// once or twice (the conformal maps): on a 1M-face mesh METIS costs more
+  /// than the numeric work it saves in two factorizations
+  fast
+};
+
 /// Factor once, solve many right-hand sides.
 class Spd_solver
 {
 public:
   virtual ~Spd_solver() = default;
+  /// The effort for the orderings of later patterns (solvers without a choice ignore it).
+  virtual void set_ordering_effort(Ordering_effort) {}
   /// Factorizes `A` (kept by reference until the next call). Returns false on failure.
   virtual bool factor(const Sparse_matrix& A) = 0;
   /// Solves for every column of B.
@@ -159,7 +175,7 @@ public:
                               std::equal(A.outerIndexPtr(), A.outerIndexPtr() + A.outerSize() + 1, m_outer.begin()) &&
                               std::equal(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros(), m_inner.begin());
     if(!same_pattern) {
-      choose_fill_reducing_ordering(s);
+      if(m_effort == Ordering_effort::fast) ask_for_minimum_degree_ordering(s);
       s.analyzePattern(A);
       m_rows = A.rows(); m_nnz = A.nonZeros();
       m_outer.assign(A.outerIndexPtr(), A.outerIndexPtr() + A.outerSize() + 1);
@@ -180,8 +196,11 @@ public:
   {
     Traits fresh;
     copy_eigen_solver_settings(const_cast<Traits&>(m_traits).solver(), fresh.solver());
-    return std::unique_ptr<Spd_solver>(new Eigen_traits_spd_solver<Traits>(fresh));
+    std::unique_ptr<Spd_solver> copy(new Eigen_traits_spd_solver<Traits>(fresh));
+    copy->set_ordering_effort(m_effort);
+    return copy;
   }
+  void set_ordering_effort(Ordering_effort effort) override { m_effort = effort; }
   /// The traits (for tests: the settings a clone keeps).
   const Traits& traits() const { return m_traits; }
 
@@ -189,14 +208,15 @@ private:
   /// CHOLMOD's default choice of ordering (`nmethods` 0) computes the
   /// minimum-degree ordering (AMD) and, when its fill is high (mesh
   /// Laplacians somewhere between 100,000 and 1M faces and up), a METIS
-  /// ordering as well, and keeps the better one. METIS costs more than the
-  /// factorization time it saves: on a 1M-face mesh (one core, loaded
-  /// machine) AMD 0.4 s + numeric 2.0-2.3 s, METIS 4.0 s + numeric 1.9-2.0 s
-  /// (benchmark/RESULTS.md, "Speed at the floor"). So unless the user chose
-  /// the methods (`nmethods` not 0), the package asks for AMD alone; where
-  /// CHOLMOD would not try METIS this is exactly its own choice.
+  /// ordering as well, and keeps the better one. For one or two
+  /// factorizations METIS costs more than the numeric work it saves: on a
+  /// 1M-face Laplacian (one core, busy machine) AMD analysis 0.4 s + numeric
+  /// 2.0-3.4 s, METIS 3.3-4.0 s + numeric 1.9-2.2 s (benchmark/RESULTS.md,
+  /// "Speed at the floor"). So with `Ordering_effort::fast`, unless the user
+  /// chose the methods (`nmethods` not 0), the package asks for AMD alone;
+  /// where CHOLMOD would not try METIS this is exactly its own choice.
   template <class Solver>
-  static void choose_fill_reducing_ordering(Solver& s)
+  static void ask_for_minimum_degree_ordering(Solver& s)
   {
 #ifdef CGAL_DEM_USE_CHOLMOD
     if constexpr(Is_cholmod_solver<Solver>::value) {
@@ -211,6 +231,7 @@ private:
   }
 
   Traits m_traits;
+  Ordering_effort m_effort = Ordering_effort::thorough;
   bool m_analyzed = false;
   Eigen::Index m_rows = 0, m_nnz = 0;
   std::vector<int> m_outer, m_inner;
@@ -267,6 +288,14 @@ std::unique_ptr<Spd_solver> make_spd_solver(const Traits& t)
 
 inline std::unique_ptr<Spd_solver> make_default_spd_solver()
 { return make_spd_solver(Default_sparse_solver_traits()); }
+
+/// A clone of `prototype` for a system whose pattern is factored once or twice.
+inline std::unique_ptr<Spd_solver> clone_with_fast_ordering(const Spd_solver& prototype)
+{
+  std::unique_ptr<Spd_solver> s = prototype.clone();
+  s->set_ordering_effort(Ordering_effort::fast);
+  return s;
+}
 
 /// Solver of the diffusion systems (A + dt L) rho+ = A rho of the
 /// density-equalizing engine, one per iteration on a slowly moving mesh:

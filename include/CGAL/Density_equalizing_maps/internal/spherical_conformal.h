@@ -73,9 +73,10 @@ inline Flash_result flash_spherical_map(const Matrix& X, const Index_matrix& F, 
   const Complex cot_corners[3] = {Complex(0, 0), Complex(1, 0),
                                   Complex(a.dot(b), a.cross(b).norm()) / a.squaredNorm()};
   // One pattern (all mesh edges) for the harmonic and the LBS systems: one
-  // assembler, one solver, one symbolic analysis, one factor alive at a time.
+  // assembler, one solver, one symbolic analysis, one factor alive at a time;
+  // two factorizations of the pattern: a cheap ordering (sparse_solver.h).
   const Face_block_assembler assembler(F, n);
-  std::unique_ptr<Spd_solver> solver = prototype.clone();
+  std::unique_ptr<Spd_solver> solver = clone_with_fast_ordering(prototype);
   Complex_vector z;
   begin_stage(stage, "harmonic map (cotangent Laplacian, sparse Cholesky)");
   // the m x 9 blocks die before the factorization, the memory peak
@@ -104,7 +105,7 @@ inline Flash_result flash_spherical_map(const Matrix& X, const Index_matrix& F, 
     res.tutte = true;
     res.fallback = "tutte embedding (the cotangent harmonic map could not be computed)";
     const Complex tutte_corners[3] = {Complex(1, 0), std::polar(1., 2 * M_PI / 3), std::polar(1., 4 * M_PI / 3)};
-    std::unique_ptr<Spd_solver> s2 = prototype.clone();
+    std::unique_ptr<Spd_solver> s2 = clone_with_fast_ordering(prototype);
     if(!punctured_harmonic_map(graph_laplacian(F, n), F, t, tutte_corners, *s2, z) || !balance_and_lift(z))
       throw Algorithm_failure("the spherical conformal map failed: neither the cotangent harmonic map nor the "
                               "Tutte embedding of the (valid) mesh could be computed (linear solver failure or "
@@ -150,7 +151,7 @@ inline Flash_result flash_spherical_map(const Matrix& X, const Index_matrix& F, 
   if(count_inverted_faces_about_center(res.S, F) > 0) {
     begin_stage(stage, "fold repair from the Tutte embedding (the harmonic map folded)");
     const Complex tutte_corners[3] = {Complex(1, 0), std::polar(1., 2 * M_PI / 3), std::polar(1., 4 * M_PI / 3)};
-    std::unique_ptr<Spd_solver> s4 = prototype.clone();
+    std::unique_ptr<Spd_solver> s4 = clone_with_fast_ordering(prototype);
     Complex_vector zt;
     if(punctured_harmonic_map(graph_laplacian(F, n), F, t, tutte_corners, *s4, zt) && balance_and_lift(zt) &&
        count_inverted_faces_about_center(S, F) == 0) {
