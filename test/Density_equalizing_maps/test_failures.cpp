@@ -266,6 +266,39 @@ void solver_clones_keep_the_settings()
   check(dynamic_cast<const I::Generic_traits_spd_solver<Configured_traits>&>(*generic_copy).traits().tolerance == 1e-3,
         "generic traits clone keeps the user's setting");
 
+#ifdef CGAL_DEM_USE_CHOLMOD
+  // Ordering effort: the conformal maps' solvers ask CHOLMOD for AMD alone,
+  // the default (thorough) leaves CHOLMOD's choice, a user's choice of
+  // methods is kept, a clone keeps the effort, and the solutions agree.
+  {
+    typedef DEM::Default_sparse_solver_traits Cholmod_traits;
+    auto cholmod_of = [](const I::Spd_solver& s) -> cholmod_common& {
+      return const_cast<Cholmod_traits&>(dynamic_cast<const I::Eigen_traits_spd_solver<Cholmod_traits>&>(s).traits())
+        .solver()
+        .cholmod();
+    };
+    const std::unique_ptr<I::Spd_solver> thorough = I::make_default_spd_solver();
+    const std::unique_ptr<I::Spd_solver> fast = I::clone_with_fast_ordering(*thorough);
+    const std::unique_ptr<I::Spd_solver> fast_copy = fast->clone();
+    I::Matrix X_thorough, X_fast, X_copy;
+    check(thorough->factor(A) && thorough->solve(B, X_thorough), "CHOLMOD, thorough ordering: solved");
+    check(fast->factor(A) && fast->solve(B, X_fast), "CHOLMOD, fast ordering: solved");
+    check(fast_copy->factor(A) && fast_copy->solve(B, X_copy), "CHOLMOD, clone of the fast solver: solved");
+    check(cholmod_of(*thorough).nmethods == 0, "thorough ordering leaves CHOLMOD's choice (nmethods 0)");
+    check(cholmod_of(*fast).nmethods == 1 && cholmod_of(*fast).method[0].ordering == CHOLMOD_AMD,
+          "fast ordering asks CHOLMOD for AMD alone");
+    check(cholmod_of(*fast_copy).nmethods == 1 && cholmod_of(*fast_copy).method[0].ordering == CHOLMOD_AMD,
+          "a clone of a fast-ordering solver keeps the effort");
+    check((X_fast - X_thorough).norm() <= 1e-12 * X_thorough.norm() && (X_copy - X_fast).norm() == 0,
+          "the orderings give the same solution");
+    Cholmod_traits chosen;
+    chosen.solver().cholmod().nmethods = 2; // the user's choice: AMD and METIS... kept
+    const std::unique_ptr<I::Spd_solver> user = I::make_spd_solver(chosen);
+    user->set_ordering_effort(I::Ordering_effort::fast);
+    check(user->factor(A) && cholmod_of(*user).nmethods == 2, "fast ordering keeps a user's choice of methods");
+  }
+#endif
+
   // End to end: a configured CG solver is usable by a method that clones it.
   Mesh m = icosphere(2);
   Point_map out = output_map(m, "v:out");
