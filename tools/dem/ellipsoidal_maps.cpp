@@ -104,6 +104,7 @@ Run run_edem(Problem& pb, const Options& opt, bool quasiconformal)
         NP::combine(common, NP::beltrami_weight(opt.alpha.value_or(5.)),
                     NP::stopping_tolerance(opt.tolerance.value_or(method_defaults(opt.method).tolerance)),
                     CGAL::parameters::number_of_iterations(opt.max_iterations.value_or(method_defaults(opt.method).max_iterations))));
+  run.report.start = start.start; // the flow itself was handed the start as `initial_map`
   watch.stop(run.seconds, run.cpu_seconds);
   run.Y0 = to_matrix(pb.mesh, init);
   run.Y = to_matrix(pb.mesh, out);

@@ -27,9 +27,10 @@ Run run_spherical_conformal(Problem& pb, const Options& opt)
   return run;
 }
 
-// The initial map of SDEM / LSDEM (FLASH + Moebius, the library's default) is
-// computed here and handed over, so that the initial density variance is
-// measured on the map the iteration actually starts from.
+// The initial map of SDEM / LSDEM (the library's default: for SDEM the start
+// chosen by its density, see Map_report::start; for LSDEM FLASH + Moebius area
+// correction) is computed here and handed over, so that the initial density
+// variance is measured on the map the iteration actually starts from.
 Run run_sdem(Problem& pb, const Options& opt, bool landmark_aligned)
 {
   Run run;
@@ -37,8 +38,15 @@ Run run_sdem(Problem& pb, const Options& opt, bool landmark_aligned)
   Point_map out = fresh_point_map(pb.mesh, "v:dem_sdem");
   Progress progress(opt.quiet);
   const Stopwatch watch;
-  DEM::spherical_conformal_map(pb.mesh, init,
-                               NP::combine(NP::mobius_area_correction(true), NP::stage_callback(stage_callback())));
+  DEM::Map_report start;
+  start.start = "conformal";
+  if(landmark_aligned)
+    DEM::spherical_conformal_map(pb.mesh, init,
+                                 NP::combine(NP::mobius_area_correction(true), NP::stage_callback(stage_callback())));
+  else // zero iterations: SDEM's own start
+    start = DEM::spherical_density_equalizing_map(
+      pb.mesh, init, NP::combine(NP::face_population_map(pb.population_map), NP::stage_callback(stage_callback()),
+                                 CGAL::parameters::number_of_iterations(0)));
   const auto common = NP::combine(NP::initial_map(init), NP::progress_callback(progress.callback()), NP::stage_callback(stage_callback()),
                                   NP::face_population_map(pb.population_map));
   if(!landmark_aligned) {
@@ -56,6 +64,7 @@ Run run_sdem(Problem& pb, const Options& opt, bool landmark_aligned)
                     NP::density_weight(opt.alpha.value_or(1.)), NP::harmonic_weight(opt.beta.value_or(2.)),
                     NP::landmark_weight(opt.gamma.value_or(5.))));
   }
+  run.report.start = start.start; // the flow itself was handed the start as `initial_map`
   watch.stop(run.seconds, run.cpu_seconds);
   run.Y0 = to_matrix(pb.mesh, init);
   run.Y = to_matrix(pb.mesh, out);
