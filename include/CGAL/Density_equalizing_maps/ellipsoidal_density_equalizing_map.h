@@ -65,10 +65,7 @@ Matrix initial_ellipsoidal_map(const TriangleMesh& tm, const Mesh_arrays<Triangl
         return x;
       }
     }
-    auto density_error = [&](const Matrix& y) {
-      const Vector area = face_areas(y, a.F);
-      return relative_sd(densities(population, area, face_to_vertex(area, a.F, y.rows())).vertex);
-    };
+    auto density_error = [&](const Matrix& y) { return vertex_density_spread(population, y, a.F); };
     const Flash_result flash = flash_spherical_map(a.X, a.F, solver);
     bool by_population = false;
     const Matrix scaled_sphere =
