@@ -9,6 +9,7 @@
 #include <CGAL/Density_equalizing_maps/parameters.h>
 #include <CGAL/Density_equalizing_maps/point_transfer.h>
 #include <CGAL/Density_equalizing_maps/spherical_density_equalizing_map.h>
+#include <CGAL/Density_equalizing_maps/internal/region_area_correction.h>
 #include <CGAL/Density_equalizing_maps/internal/spherical_regions.h>
 
 #include <CGAL/boost/graph/named_params_helper.h>
@@ -19,6 +20,7 @@
 #include <cmath>
 #include <functional>
 #include <map>
+#include <memory>
 #include <numeric>
 #include <string>
 #include <utility>
@@ -60,6 +62,11 @@ struct Globe_cartogram_report
   double sea_target_share = 0;        ///< the sea's share of the total population
   std::size_t passes = 0;             ///< density-equalizing passes run
   std::vector<double> max_error_after_pass; ///< `max_relative_error` after each pass
+  /// `max_relative_error` after the passes, before the region-area correction
+  double max_error_before_correction = 0;
+  /// iterations of the region-area correction (0: the passes reached the tolerance)
+  std::size_t correction_iterations = 0;
+  std::string correction_message;     ///< why the correction stopped short of the tolerance, if it did
   bool converged = false;             ///< every region not too small is within the tolerance
   std::size_t fold_overs = 0;         ///< exact fold-over count of the final map (0)
   Map_report last_pass;               ///< the report of the last pass
@@ -446,6 +453,27 @@ Globe_cartogram_report globe_cartogram(const TriangleMesh& tm, const std::vector
     if constexpr(!is_default_parameter<NamedParameters, internal_np::pass_callback_t>::value)
       get_parameter(np, internal_np::pass_callback)(rep.passes, rep.max_relative_error);
     if(rep.max_relative_error <= tolerance) break;
+  }
+  rep.max_error_before_correction = rep.max_relative_error;
+  if(rep.max_relative_error > tolerance && (rep.last_pass.fold_overs == 0)) {
+    // the region-area correction (internal/region_area_correction.h): the
+    // passes stall where a region must shrink by orders of magnitude
+    internal::Vector target(Eigen::Index(nr) + 1), weight(target.size());
+    for(std::size_t r = 0; r < nr; ++r) {
+      target[Eigen::Index(r)] = rep.value_share[r] * (1 - rep.sea_target_share);
+      weight[Eigen::Index(r)] = std::min(1., rep.faces_covered[r] / rep.minimum_faces);
+    }
+    target[Eigen::Index(nr)] = rep.sea_target_share;
+    weight[Eigen::Index(nr)] = 1;
+    std::unique_ptr<internal::Spd_solver> solver = internal::solver_from_parameters(np);
+    const internal::Region_area_correction_result c = internal::correct_region_areas(
+      Y, a.F, pop.face_parts, nr, target, weight, *solver, [&](const internal::Matrix& Z) {
+        measure(Z, area, sea);
+        return rep.max_relative_error <= tolerance;
+      });
+    measure(Y, area, sea);
+    rep.correction_iterations = c.iterations;
+    rep.correction_message = c.message;
   }
   rep.converged = rep.max_relative_error <= tolerance;
   rep.fold_overs = internal::count_inverted_faces_about_center(Y, a.F);
