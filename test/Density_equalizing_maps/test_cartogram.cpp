@@ -10,6 +10,9 @@
 //  - a polygon across the antimeridian and one around the south pole give the shares of the
 //    same polygons rotated away from both, and their values' shares within 1 %;
 //  - a region with a hole, and the region in its hole;
+//  - a near-empty region around a pole (value share 1e-4, as Antarctica's population):
+//    the region-area correction after the passes lowers the largest error tenfold, and
+//    the report says whether 1 % was reached (`known`: the 1 % itself);
 //  - every cartogram is fold-free (exact count);
 //  - `dem cartogram`: a run writes its four outputs (the deformed regions read back, same
 //    ids, closed rings); each GeoJSON / CSV error gives exit 3, a message naming the
@@ -253,6 +256,34 @@ void test_hole(const Globe& g)
         "the ring's area excludes its hole (within 1e-3 of the exact area)");
 }
 
+/// A near-empty region around a pole, like Antarctica in a population cartogram: it must
+/// shrink by about 10^3 while its neighbours grow. The density-equalizing passes stall
+/// there (the faces next to a region shrunk that much cannot take the area the flow asks
+/// of them); the region-area correction after them must bring the largest error down by
+/// at least 10x without a fold-over, and the report must say whether 1 % was reached.
+/// `known` asks for the 1 % itself (issue 17 item 3; not reached yet).
+void test_near_empty_polar_region(const Globe& g, bool known)
+{
+  std::cout << "a near-empty polar region (value share 1e-4, area share 0.15)\n";
+  const std::vector<DEM::Spherical_region> regions = {
+    region("south polar cap", {parallel(-50, 120, false)}),
+    region("northern cap", {parallel(30, 120, true)}),
+    region("equatorial cap", {circle(60, 0, 25, 120)})};
+  const DEM::Globe_cartogram_report rep = cartogram(g, regions, {1., 6000., 4000.});
+  std::cout << "  largest error after the passes " << rep.max_error_before_correction << ", after "
+            << rep.correction_iterations << " correction iterations " << rep.max_relative_error
+            << (rep.correction_message.empty() ? "" : " (" + rep.correction_message + ")") << "\n";
+  if(known) {
+    check(rep.max_relative_error <= 0.01, "near-empty polar region: every region within 1 % of its value share");
+    return;
+  }
+  check(rep.max_error_before_correction > 0.01, "the passes alone leave the polar region off (the case needs the correction)");
+  check(rep.max_relative_error <= 0.1 * rep.max_error_before_correction,
+        "the region-area correction lowers the largest relative error at least tenfold");
+  check(rep.converged == (rep.max_relative_error <= 0.01), "the report's converged flag is the 1 % test");
+  check(rep.converged || !rep.correction_message.empty(), "a correction that stops short says why");
+}
+
 #ifdef DEM_HAVE_CARTOGRAM
 void test_command_line()
 {
@@ -328,12 +359,14 @@ int main(int argc, char** argv)
   const Globe coarse = geodesic_globe(20); // 4,002 vertices, 8,000 faces
   if(known) { // the part that does not hold yet (DEM_KNOWN_FAILURES: test_cartogram_known)
     test_antimeridian_and_pole(coarse, fine, true);
+    test_near_empty_polar_region(coarse, true);
     return dem_cli_test::failures() ? 1 : 0;
   }
   test_overlap_accuracy(fine);
   test_hemispheres(coarse);
   test_antimeridian_and_pole(coarse, fine, false);
   test_hole(coarse);
+  test_near_empty_polar_region(coarse, false);
 #ifdef DEM_HAVE_CARTOGRAM
   test_command_line();
 #else

@@ -203,7 +203,7 @@ int cartogram_command(const std::vector<std::string>& args)
     const int f = std::max(1, int(std::lround(std::sqrt(std::max(0., double(o.vertices) - 2) / 10))));
     const DEM::internal::Triangle_arrays t = DEM::internal::geodesic_sphere(f);
     DEM::internal::write_triangle_mesh(t.X, t.F, globe);
-    stages->begin("cartogram (population, density-equalizing passes)", o.tolerance.value_or(1e-3));
+    stages->begin("cartogram (population, density-equalizing passes, region-area correction)", o.tolerance.value_or(1e-3));
     auto out_map = globe.add_property_map<Globe::Vertex_index, Point>("v:cartogram").first;
     Stage_progress* sp = &*stages;
     const bool quiet = o.quiet;
@@ -290,6 +290,9 @@ int cartogram_command(const std::vector<std::string>& args)
   m["regions"] = geo.regions.size();
   m["passes"] = rep.passes;
   m["max_error_after_pass"] = rep.max_error_after_pass;
+  m["max_relative_area_error_before_correction"] = rep.max_error_before_correction;
+  m["correction_iterations"] = rep.correction_iterations;
+  if(!rep.correction_message.empty()) m["correction_message"] = rep.correction_message;
   m["converged"] = rep.converged;
   m["area_tolerance"] = o.area_tolerance;
   m["fold_overs"] = rep.fold_overs;
@@ -365,12 +368,14 @@ int cartogram_command(const std::vector<std::string>& args)
     return 3;
   }
   std::cout << "cartogram: " << geo.regions.size() << " regions, " << nf << " faces, " << rep.passes
-            << " passes, max relative area error " << rep.max_relative_error << ", mean " << rep.mean_relative_error
+            << " passes, " << rep.correction_iterations << " correction iterations, max relative area error "
+            << rep.max_relative_error << ", mean " << rep.mean_relative_error
             << " (" << rep.too_small.size() << " regions too small), fold-overs " << rep.fold_overs << ", "
             << m["seconds"].get<double>() << " s" << std::endl;
   if(!rep.converged)
     std::cerr << "dem: note: the area tolerance " << o.area_tolerance << " was not reached in " << rep.passes
-              << " passes (largest relative error " << rep.max_relative_error << ")\n";
+              << " passes and " << rep.correction_iterations << " correction iterations (largest relative error "
+              << rep.max_relative_error << (rep.correction_message.empty() ? "" : "; " + rep.correction_message) << ")\n";
   return 0;
 }
 

@@ -448,27 +448,52 @@ Globe_cartogram_report globe_cartogram(const TriangleMesh& tm, const std::vector
       const Eigen::Vector3d y(next[i].x(), next[i].y(), next[i].z());
       Y.row(Eigen::Index(i)) = y.normalized().transpose();
     }
+    const double before = rep.max_relative_error;
     measure(Y, area, sea);
     rep.max_error_after_pass.push_back(rep.max_relative_error);
     if constexpr(!is_default_parameter<NamedParameters, internal_np::pass_callback_t>::value)
       get_parameter(np, internal_np::pass_callback)(rep.passes, rep.max_relative_error);
     if(rep.max_relative_error <= tolerance) break;
+    // A pass that does not halve the largest error is stalling: the flow is
+    // crushing faces next to regions that must shrink by orders of magnitude
+    // (the world's Antarctica), and further passes leave a mesh the
+    // correction below can hardly move (benchmark/RESULTS.md).
+    if(!(rep.max_relative_error <= 0.5 * before)) break;
   }
   rep.max_error_before_correction = rep.max_relative_error;
   if(rep.max_relative_error > tolerance && (rep.last_pass.fold_overs == 0)) {
     // the region-area correction (internal/region_area_correction.h): the
     // passes stall where a region must shrink by orders of magnitude
-    internal::Vector target(Eigen::Index(nr) + 1), weight(target.size());
-    for(std::size_t r = 0; r < nr; ++r) {
-      target[Eigen::Index(r)] = rep.value_share[r] * (1 - rep.sea_target_share);
-      weight[Eigen::Index(r)] = std::min(1., rep.faces_covered[r] / rep.minimum_faces);
-    }
-    target[Eigen::Index(nr)] = rep.sea_target_share;
-    weight[Eigen::Index(nr)] = 1;
+    // One constraint per region held to the tolerance, one for the regions
+    // too small for the mesh together (so that the land keeps its share
+    // without a solve per small region), the sea as the rest.
+    std::vector<std::size_t> part_of(nr);
+    std::size_t parts = 0;
+    for(std::size_t r = 0; r < nr; ++r)
+      if(!small[r]) part_of[r] = parts++;
+    const std::size_t small_part = parts;
+    if(!rep.too_small.empty()) ++parts;
+    for(std::size_t r : rep.too_small) part_of[r] = small_part;
+    internal::Vector target = internal::Vector::Zero(Eigen::Index(parts) + 1);
+    for(std::size_t r = 0; r < nr; ++r)
+      target[Eigen::Index(part_of[r])] += rep.value_share[r] * (1 - rep.sea_target_share);
+    target[Eigen::Index(parts)] = rep.sea_target_share;
+    const internal::Vector weight = internal::Vector::Ones(target.size());
+    internal::Face_parts face_parts(pop.face_parts.size());
+    for(std::size_t f = 0; f < face_parts.size(); ++f)
+      for(const auto& p : pop.face_parts[f]) {
+        const std::size_t j = part_of[p.first];
+        auto same = std::find_if(face_parts[f].begin(), face_parts[f].end(), [&](const auto& q) { return q.first == j; });
+        if(same == face_parts[f].end()) face_parts[f].emplace_back(j, p.second);
+        else same->second += p.second;
+      }
     std::unique_ptr<internal::Spd_solver> solver = internal::solver_from_parameters(np);
     const internal::Region_area_correction_result c = internal::correct_region_areas(
-      Y, a.F, pop.face_parts, nr, target, weight, *solver, [&](const internal::Matrix& Z) {
+      Y, a.F, face_parts, parts, target, weight, *solver, [&](const internal::Matrix& Z, std::size_t iteration) {
         measure(Z, area, sea);
+        if constexpr(!is_default_parameter<NamedParameters, internal_np::progress_callback_t>::value)
+          if(iteration > 0 && !get_parameter(np, internal_np::progress_callback)(iteration, rep.max_relative_error))
+            return true;
         return rep.max_relative_error <= tolerance;
       });
     measure(Y, area, sea);
