@@ -327,9 +327,15 @@ std::vector<Spherical_region> push_forward_region_boundaries(const TriangleMesh&
 /// each further pass (as the planar cartogram tools of Gastner and Newman do) gives every
 /// region the density (target share) / (current share) on the deformed globe and flows again,
 /// until every region covering at least 50 faces has its area share within
-/// `relative_area_tolerance` of its value share, or `number_of_passes` passes are done.
-/// The sea keeps the share of the population the sea density gives it. Each pass is fold-free
-/// (certified by exact predicates), so is their composition.
+/// `relative_area_tolerance` of its value share, `number_of_passes` passes are done, or a
+/// pass does not halve the largest error (it is stalling on regions that must shrink by
+/// orders of magnitude). If the tolerance is not met then, a region-area correction
+/// follows: Gauss-Newton steps on the regions' areas (the regions too small for the mesh
+/// held together), each the smoothest displacement of the vertices that brings the areas
+/// closer to their targets, halved until no face turns over; it stops at the tolerance or
+/// says in `Globe_cartogram_report::correction_message` why it stopped short.
+/// The sea keeps the share of the population the sea density gives it. Each pass and each
+/// correction step is fold-free (certified by exact predicates), so is their composition.
 ///
 /// \tparam TriangleMesh a model of `FaceListGraph` and `HalfedgeGraph`
 /// \tparam VertexPointOutMap a writable vertex property map with 3D points as values
@@ -350,6 +356,13 @@ std::vector<Spherical_region> push_forward_region_boundaries(const TriangleMesh&
 ///     \cgalParamDescription{the largest number of density-equalizing passes}
 ///     \cgalParamType{unsigned int}
 ///     \cgalParamDefault{8}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{progress_callback}
+///     \cgalParamDescription{a callable `bool(std::size_t iteration, double error)`: called by every
+///       pass's SDEM iterations (their stopping quantity) and by the region-area correction
+///       (its iterations and the largest relative area error); returning `false` stops the
+///       pass, or the correction}
+///     \cgalParamDefault{none}
 ///   \cgalParamNEnd
 ///   \cgalParamNBegin{pass_callback}
 ///     \cgalParamDescription{a callable `void(std::size_t pass, double max_relative_error)` called after each pass}
