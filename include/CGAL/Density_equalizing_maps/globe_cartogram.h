@@ -441,7 +441,9 @@ Globe_cartogram_report globe_cartogram(const TriangleMesh& tm, const std::vector
   std::vector<double> area;
   double sea = 0;
   measure(Y, area, sea);
-  for(std::size_t pass = 0; pass < max_passes; ++pass) {
+  // One density-equalizing pass from the current map Y; false if it did not
+  // give a fold-free map (Y is then unchanged).
+  auto run_pass = [&]() {
     // densities that would give every region its target share if the flow equalized exactly
     const std::vector<double> A = internal::flat_face_areas(Y, a.F);
     std::vector<double> density(nr);
@@ -456,27 +458,20 @@ Globe_cartogram_report globe_cartogram(const TriangleMesh& tm, const std::vector
       parameters::combine(np, parameters::initial_map(position_map), parameters::face_population_map(population_map),
                           parameters::vertex_point_map(position_map)));
     ++rep.passes;
-    if(rep.last_pass.fold_overs > 0) break; // keep the last fold-free map
+    if(rep.last_pass.fold_overs > 0) return false; // keep the last fold-free map
     for(std::size_t i = 0; i < next.size(); ++i) {
       const Eigen::Vector3d y(next[i].x(), next[i].y(), next[i].z());
       Y.row(Eigen::Index(i)) = y.normalized().transpose();
     }
-    const double before = rep.max_relative_error;
     measure(Y, area, sea);
     rep.max_error_after_pass.push_back(rep.max_relative_error);
     if constexpr(!is_default_parameter<NamedParameters, internal_np::pass_callback_t>::value)
       get_parameter(np, internal_np::pass_callback)(rep.passes, rep.max_relative_error);
-    if(rep.max_relative_error <= tolerance) break;
-    // A pass that does not halve the largest error is stalling: the flow is
-    // crushing faces next to regions that must shrink by orders of magnitude
-    // (the world's Antarctica), and further passes leave a mesh the
-    // correction below can hardly move (benchmark/RESULTS.md).
-    if(!(rep.max_relative_error <= 0.5 * before)) break;
-  }
-  rep.max_error_before_correction = rep.max_relative_error;
-  if(rep.max_relative_error > tolerance && (rep.last_pass.fold_overs == 0)) {
-    // the region-area correction (internal/region_area_correction.h): the
-    // passes stall where a region must shrink by orders of magnitude
+    return true;
+  };
+  // The region-area correction (internal/region_area_correction.h) from Y:
+  // the passes stall where a region must shrink by orders of magnitude.
+  auto correct = [&]() {
     // One constraint per region held to the tolerance, one for the regions
     // too small for the mesh together (so that the land keeps its share
     // without a solve per small region), the sea as the rest.
@@ -510,8 +505,22 @@ Globe_cartogram_report globe_cartogram(const TriangleMesh& tm, const std::vector
         return rep.max_relative_error <= tolerance;
       });
     measure(Y, area, sea);
-    rep.correction_iterations = c.iterations;
+    rep.correction_iterations += c.iterations;
     rep.correction_message = c.message;
+  };
+
+  for(std::size_t pass = 0; pass < max_passes; ++pass) {
+    const double before = rep.max_relative_error;
+    if(!run_pass() || rep.max_relative_error <= tolerance) break;
+    // A pass that does not halve the largest error is stalling: the flow is
+    // crushing faces next to regions that must shrink by orders of magnitude
+    // (the world's Antarctica), and further passes leave a mesh the
+    // correction can hardly move (benchmark/RESULTS.md).
+    if(!(rep.max_relative_error <= 0.5 * before)) break;
+  }
+  rep.max_error_before_correction = rep.max_relative_error;
+  if(rep.max_relative_error > tolerance && rep.last_pass.fold_overs == 0) {
+    correct(); // another pass and correction after a stalled one do not help (RESULTS.md)
   }
   rep.converged = rep.max_relative_error <= tolerance;
   rep.fold_overs = internal::count_inverted_faces_about_center(Y, a.F);
