@@ -316,6 +316,9 @@ void test_command_line()
     const nlohmann::json m = nlohmann::json::parse(read_file(dir / "metrics.json"));
     check(m["fold_overs"].get<int>() == 0, "metrics: 0 fold-overs");
     check(m["max_relative_area_error"].get<double>() <= 0.01, "metrics: max relative area error within 1 %");
+    check(m.contains("correction_iterations") && m.contains("max_relative_area_error_before_correction") &&
+            m["max_relative_area_error_before_correction"].get<double>() >= m["max_relative_area_error"].get<double>(),
+          "metrics: the region-area correction's iterations and the error before it");
   }
 
   struct Bad { const char* what; std::string geojson, csv, message; };
