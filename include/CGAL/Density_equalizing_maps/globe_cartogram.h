@@ -162,7 +162,7 @@ Region_populations region_populations(const Mesh_arrays<TriangleMesh>& a, const 
   using CGAL::parameters::is_default_parameter;
   check_values(regions, values);
   const int subdivision = choose_parameter(get_parameter(np, internal_np::overlap_subdivision), 8);
-  if(subdivision < 1 || subdivision > 64) throw Invalid_input("overlap_subdivision must be in [1, 64]");
+  if(subdivision < 0 || subdivision > 64) throw Invalid_input("overlap_subdivision must be in [0, 64]");
   Region_populations out;
   Face_region_overlaps o = face_region_overlaps(a.X, a.F, regions, subdivision);
   out.face_parts = std::move(o.parts);
@@ -188,6 +188,87 @@ Region_populations region_populations(const Mesh_arrays<TriangleMesh>& a, const 
   return out;
 }
 
+/// A point of a region's boundary on the globe mesh: its direction and its location.
+struct Located_boundary_point
+{
+  Eigen::Vector3d x;
+  Surface_point at;
+};
+
+/// The two vertices that faces f and g share, if they share an edge.
+inline bool shared_edge(const Index_matrix& F, Eigen::Index f, Eigen::Index g, Eigen::Index& u, Eigen::Index& v)
+{
+  int common = 0;
+  for(int a = 0; a < 3; ++a)
+    for(int b = 0; b < 3; ++b)
+      if(F(f, a) == F(g, b)) (common++ == 0 ? u : v) = F(f, a);
+  return common == 2;
+}
+
+/// Appends to `out` the points strictly between x and y where the great-circle arc
+/// x -> y crosses edges of the globe mesh, in order along the arc.
+///
+/// Why: the map is linear on each flat face, and a great-circle arc is a straight
+/// segment on a flat face seen from the centre, so the exact image of the arc is the
+/// chain of great-circle arcs between the images of its edge crossings; pushing only
+/// evenly spaced points forward cuts the corners of that chain, and on the faces that a
+/// cartogram shears most (next to a region shrunk a thousandfold) those corners are
+/// several percent of a small region's area. Where x and y lie in faces sharing an edge,
+/// the crossing is where the arc meets that edge's great circle; elsewhere (the arc
+/// skips a face or passes next to a vertex) the arc is bisected, down to arcs of
+/// 1e-12 radians, below which a missed corner is far below round-off of the areas.
+inline void append_edge_crossings(const Mapped_surface& globe, const Located_boundary_point& x,
+                                  const Located_boundary_point& y, std::vector<Located_boundary_point>& out,
+                                  int depth = 0)
+{
+  if(x.at.face == y.at.face) return;
+  const Matrix& X = globe.positions();
+  const Eigen::Vector3d n = x.x.cross(y.x);
+  Eigen::Index u = 0, v = 0;
+  if(shared_edge(globe.faces(), x.at.face, y.at.face, u, v)) {
+    Eigen::Vector3d z = n.cross(Eigen::Vector3d(X.row(u)).cross(Eigen::Vector3d(X.row(v))));
+    if(z.dot(x.x + y.x) < 0) z = -z;
+    const double length = z.norm();
+    if(length > 0 && x.x.cross(z).dot(n) >= 0 && z.cross(y.x).dot(n) >= 0) {
+      z /= length;
+      out.push_back({z, globe.locate(z, x.at)});
+      return;
+    }
+  }
+  if(depth >= 40 || n.norm() < 1e-12) return;
+  Located_boundary_point mid;
+  mid.x = (x.x + y.x).normalized();
+  mid.at = globe.locate(mid.x, x.at);
+  append_edge_crossings(globe, x, mid, out, depth + 1);
+  out.push_back(mid);
+  append_edge_crossings(globe, mid, y, out, depth + 1);
+}
+
+/// The boundary points of the great-circle arc a -> b on the globe mesh, a included and
+/// b excluded: points at most `step` apart and every crossing with a mesh edge. They
+/// are computed from the lexicographically smaller end, so that an edge shared by two
+/// rings, traversed in opposite directions, gets exactly the same points.
+inline void trace_arc(const Mapped_surface& globe, const Eigen::Vector3d& a, const Eigen::Vector3d& b, double step,
+                      std::vector<Located_boundary_point>& out)
+{
+  const bool forward = std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+  std::vector<Eigen::Vector3d> even;
+  densify_arc(forward ? a : b, forward ? b : a, step, even);
+  even.push_back(forward ? b : a);
+  std::vector<Located_boundary_point> chain;
+  Located_boundary_point previous{even[0], globe.locate(even[0], out.empty() ? Surface_point() : out.back().at)};
+  chain.push_back(previous);
+  for(std::size_t k = 1; k < even.size(); ++k) {
+    const Located_boundary_point next{even[k], globe.locate(even[k], previous.at)};
+    append_edge_crossings(globe, previous, next, chain);
+    chain.push_back(next);
+    previous = next;
+  }
+  // b belongs to the next arc
+  if(forward) out.insert(out.end(), chain.begin(), chain.end() - 1);
+  else out.insert(out.end(), chain.rbegin(), chain.rend() - 1);
+}
+
 } // namespace internal
 
 /// \ingroup PkgDensityEqualizingMapsCartogram
@@ -204,6 +285,13 @@ Region_populations region_populations(const Mesh_arrays<TriangleMesh>& a, const 
 /// sub-triangles (\f$ s \f$ = `overlap_subdivision`) whose centroids are classified by an
 /// exact spherical point-in-polygon test (crossing parity of great-circle arcs, with
 /// CGAL's exact orientation predicate); faces away from boundaries are classified whole.
+/// With \f$ s = 0 \f$ the overlaps are exact (to round-off) on the flat faces: the rings'
+/// arcs are clipped to each face's cone from the centre and the covered part's area is
+/// measured in the face's plane. Exact overlaps are the better populations, but the
+/// region-area correction of `globe_cartogram()` then also sees every sliver of a region in
+/// the faces along its border, and it stalls on regions that must shrink a thousandfold
+/// (the world's Antarctica in a population cartogram) where the sampled overlaps let those
+/// faces go; the default keeps the samples until the mesh is refined there.
 /// The mesh, the rings crossing the antimeridian and the rings around a pole are all
 /// handled on the sphere in 3D; no projection is involved.
 ///
@@ -219,7 +307,7 @@ Region_populations region_populations(const Mesh_arrays<TriangleMesh>& a, const 
 ///     \cgalParamDefault{the mean land density (total value / land area), so that the sea keeps its area}
 ///   \cgalParamNEnd
 ///   \cgalParamNBegin{overlap_subdivision}
-///     \cgalParamDescription{\f$ s \f$: faces near a boundary are sampled with \f$ s^2 \f$ sub-triangles}
+///     \cgalParamDescription{\f$ s \f$: faces near a boundary are sampled with \f$ s^2 \f$ sub-triangles; 0 for exact overlaps}
 ///     \cgalParamType{int}
 ///     \cgalParamDefault{8}
 ///   \cgalParamNEnd
@@ -245,9 +333,12 @@ Region_populations face_populations_from_regions(const TriangleMesh& tm, const s
 /// \brief Carries region boundaries through a map of a globe mesh onto the sphere.
 ///
 /// Each ring edge is first densified along its great circle, with points at most
-/// `boundary_step` apart (the same points for an edge shared by two rings, so that shared
-/// borders stay shared), then every point is located on the globe mesh `tm` and pushed
-/// forward through the map with `Point_transfer`. The rings keep their order of vertices,
+/// `boundary_step` apart and a point at every crossing with an edge of the globe mesh `tm`
+/// (the same points for an edge shared by two rings, so that shared borders stay shared),
+/// then every point is located on `tm` and pushed forward through the map as
+/// `Point_transfer` does. As the map is linear on each face of `tm`, the great-circle arcs
+/// between the pushed points are the exact image of the ring (up to the radial
+/// projection of each flat face onto the sphere), however strongly the map shears a face. The rings keep their order of vertices,
 /// hence their orientation; a fold-free map keeps disjoint regions disjoint.
 ///
 /// \tparam TriangleMesh a model of `FaceListGraph` and `HalfedgeGraph`
@@ -286,8 +377,10 @@ std::vector<Spherical_region> push_forward_region_boundaries(const TriangleMesh&
   const double step = choose_parameter(get_parameter(np, internal_np::boundary_step), 0.5 * mean_edge);
   if(!(step > 0)) throw Invalid_input("boundary_step must be positive");
   auto vpm = choose_parameter(get_parameter(np, internal_np::vertex_point), get_const_property_map(vertex_point, tm));
-  const Point_transfer<TriangleMesh, Unit_sphere_domain, Point> globe(tm, vpm, Unit_sphere_domain(), np);
-  const Point_transfer<TriangleMesh, Unit_sphere_domain, Point> image(tm, mapped, Unit_sphere_domain(), np);
+  const Point_transfer<TriangleMesh, Unit_sphere_domain, Point> globe_transfer(tm, vpm, Unit_sphere_domain(), np);
+  const Point_transfer<TriangleMesh, Unit_sphere_domain, Point> image_transfer(tm, mapped, Unit_sphere_domain(), np);
+  const internal::Mapped_surface& globe = globe_transfer.mapped_surface();
+  const internal::Mapped_surface& image = image_transfer.mapped_surface();
   std::vector<Spherical_region> out;
   out.reserve(regions.size());
   for(std::size_t r = 0; r < regions.size(); ++r) {
@@ -299,14 +392,11 @@ std::vector<Spherical_region> push_forward_region_boundaries(const TriangleMesh&
         internal::polygon_rings(regions[r].polygons[p], "region \"" + regions[r].id + "\", polygon " + std::to_string(p));
       Spherical_polygon q;
       for(const internal::Spherical_ring& ring : rings) {
-        std::vector<Eigen::Vector3d> dense;
-        for(std::size_t i = 0; i < ring.size(); ++i) internal::densify_arc(ring.vertex(i), ring.next_vertex(i), step, dense);
+        std::vector<internal::Located_boundary_point> dense;
+        for(std::size_t i = 0; i < ring.size(); ++i) internal::trace_arc(globe, ring.vertex(i), ring.next_vertex(i), step, dense);
         std::vector<Lon_lat> moved;
         moved.reserve(dense.size());
-        for(const Eigen::Vector3d& x : dense) {
-          const Point y = image.push_forward(globe.locate(Point(x.x(), x.y(), x.z())));
-          moved.push_back(internal::lon_lat(Eigen::Vector3d(y.x(), y.y(), y.z())));
-        }
+        for(const internal::Located_boundary_point& x : dense) moved.push_back(internal::lon_lat(image.domain_point(x.at)));
         q.rings.push_back(std::move(moved));
       }
       d.polygons.push_back(std::move(q));
@@ -314,6 +404,44 @@ std::vector<Spherical_region> push_forward_region_boundaries(const TriangleMesh&
     out.push_back(std::move(d));
   }
   return out;
+}
+
+/// \ingroup PkgDensityEqualizingMapsCartogram
+/// \brief The areas of regions carried through a map of the globe, measured as spherical
+/// polygons: for each polygon, the area its exterior ring encloses minus its holes'.
+///
+/// A ring of `pushed` encloses the side that corresponds to the side its ring of `regions`
+/// encloses (a fold-free map keeps the winding), which may be the larger side once the map
+/// has grown the region. The report of `globe_cartogram()` measures areas on the mesh
+/// (covered fractions of the faces times their deformed areas); with sampled overlaps the
+/// two part where the map shrinks a region by orders of magnitude, and these are the areas
+/// a reader of the output polygons sees.
+///
+/// \param regions the regions, as given to `push_forward_region_boundaries()`
+/// \param pushed its output for them (same polygons and rings)
+/// \returns the area of each region of `pushed` on the unit sphere
+/// \throws Invalid_input if the two do not have the same polygons and rings, or on an invalid ring of `regions`
+inline std::vector<double> pushed_forward_region_areas(const std::vector<Spherical_region>& regions,
+                                                       const std::vector<Spherical_region>& pushed)
+{
+  const double four_pi = 4 * 3.14159265358979323846;
+  if(pushed.size() != regions.size()) throw Invalid_input("pushed_forward_region_areas: the two lists of regions differ");
+  std::vector<double> area(regions.size(), 0.);
+  for(std::size_t r = 0; r < regions.size(); ++r) {
+    if(pushed[r].polygons.size() != regions[r].polygons.size())
+      throw Invalid_input("pushed_forward_region_areas: region \"" + regions[r].id + "\" has other polygons");
+    for(std::size_t p = 0; p < regions[r].polygons.size(); ++p) {
+      const std::vector<internal::Spherical_ring> rings =
+        internal::polygon_rings(regions[r].polygons[p], "region \"" + regions[r].id + "\", polygon " + std::to_string(p));
+      if(pushed[r].polygons[p].rings.size() != rings.size())
+        throw Invalid_input("pushed_forward_region_areas: region \"" + regions[r].id + "\" has other rings");
+      for(std::size_t k = 0; k < rings.size(); ++k) {
+        const double left = internal::area_to_the_left(pushed[r].polygons[p].rings[k]);
+        area[r] += (k == 0 ? 1 : -1) * (rings[k].left_is_inside() ? left : four_pi - left);
+      }
+    }
+  }
+  return area;
 }
 
 /// \ingroup PkgDensityEqualizingMapsCartogram

@@ -25,7 +25,8 @@
 // test of two arcs uses CGAL's exact orientation predicate on the double
 // coordinates, so parities are consistent and exact.
 //
-// Overlap of a face with a polygon. Each face is split into s^2 congruent
+// Overlap of a face with a polygon, exactly (subdivision 0): see
+// enclosed_face_fraction(). Or sampled: each face is split into s^2 congruent
 // sub-triangles (s = subdivision); the centroid of each is classified and the
 // overlap fraction is the share of inside sub-triangles. Only faces near the
 // ring (a ring edge's bounding cap meets the face's cap) are subdivided, and
@@ -224,6 +225,8 @@ public:
   const Eigen::Vector3d& vertex(std::size_t i) const { return m_v[i]; }
   const Eigen::Vector3d& next_vertex(std::size_t i) const { return m_v[(i + 1) % m_v.size()]; }
   const Spherical_cap& edge_cap(std::size_t i) const { return m_edge_caps[i]; }
+  /// Whether the enclosed side is to the left of the ring's direction (seen from outside).
+  bool left_is_inside() const { return m_left_is_inside; }
   /// A cap containing the enclosed side (the whole sphere if none smaller was found).
   const Spherical_cap& cap() const { return m_cap; }
   /// Area of the enclosed side.
@@ -399,14 +402,125 @@ inline std::vector<Eigen::Vector3d> subtriangle_centroids(int s)
   return out;
 }
 
+/// The share of the flat face (corner[0], corner[1], corner[2]) (vertices on the unit
+/// sphere) that lies, seen from the centre, on the enclosed side of `ring`, exactly up to
+/// round-off; negative where that is ill-posed (a ring edge along an edge of the face),
+/// for the caller to use samples there.
+///
+/// Seen from the centre, the face is the cone over its corners and a ring edge is the
+/// chord between its ends: a point (1 - t) u + t w of the chord has a direction on the
+/// arc u w, and its side of a plane through the centre is linear in t, so clipping the
+/// chord to the cone's three planes clips the arc exactly. The clipped pieces, projected
+/// from the centre onto the face's plane, are straight segments; with the pieces of the
+/// face's edges that lie on the enclosed side (each classified at its midpoint by the
+/// crossings of the arc from the face's centroid, whose side is known), they bound the
+/// face's covered part, whose area the shoelace formula gives. Ring edges are taken
+/// with the enclosed side on their left, the face's edges counterclockwise, both seen
+/// from outside the sphere.
+inline double enclosed_face_fraction(const Spherical_ring& ring, const std::vector<int>& near,
+                                     const Eigen::Vector3d& centroid, bool centroid_enclosed,
+                                     std::array<Eigen::Vector3d, 3> corner)
+{
+  Eigen::Vector3d normal = (corner[1] - corner[0]).cross(corner[2] - corner[0]);
+  if(normal.dot(corner[0] + corner[1] + corner[2]) < 0) {
+    std::swap(corner[1], corner[2]);
+    normal = -normal;
+  }
+  const double twice_area = normal.norm();
+  if(!(twice_area > 0)) return -1;
+  normal /= twice_area;
+  const double offset = normal.dot(corner[0]);
+  const Eigen::Vector3d e1 = (corner[1] - corner[0]).normalized(), e2 = normal.cross(e1);
+  const auto in_plane = [&](const Eigen::Vector3d& direction) {
+    const Eigen::Vector3d p = direction * (offset / normal.dot(direction)) - corner[0];
+    return Eigen::Vector2d(p.dot(e1), p.dot(e2));
+  };
+  std::array<Eigen::Vector2d, 3> flat;
+  std::array<Eigen::Vector3d, 3> inward; // normal of the plane through the centre and edge i, into the cone
+  for(int i = 0; i < 3; ++i) {
+    flat[std::size_t(i)] = in_plane(corner[std::size_t(i)]);
+    inward[std::size_t(i)] = corner[std::size_t(i)].cross(corner[std::size_t((i + 1) % 3)]).normalized();
+  }
+  double twice_covered = 0;
+  const auto shoelace = [&](const Eigen::Vector2d& p, const Eigen::Vector2d& q) { twice_covered += p.x() * q.y() - q.x() * p.y(); };
+  const auto position_on_edge = [&](int i, const Eigen::Vector2d& p) {
+    const Eigen::Vector2d d = flat[std::size_t((i + 1) % 3)] - flat[std::size_t(i)];
+    return std::clamp((p - flat[std::size_t(i)]).dot(d) / d.squaredNorm(), 0., 1.);
+  };
+  std::array<std::vector<double>, 3> hits; // where ring pieces meet edge i, in [0, 1] from corner i
+  const double on_plane = 1e-14;
+  for(int j : near) {
+    Eigen::Vector3d u = ring.vertex(std::size_t(j)), w = ring.next_vertex(std::size_t(j));
+    if(!ring.left_is_inside()) std::swap(u, w);
+    double t0 = 0, t1 = 1;
+    int enters = -1, leaves = -1;
+    bool outside = false;
+    for(int i = 0; i < 3 && !outside; ++i) {
+      const double fu = inward[std::size_t(i)].dot(u), fw = inward[std::size_t(i)].dot(w);
+      if(std::abs(fu) <= on_plane && std::abs(fw) <= on_plane) return -1; // along the face's edge
+      if(fu < 0 && fw < 0) outside = true;
+      else if(fu < 0 || fw < 0) {
+        const double t = fu / (fu - fw);
+        if(fu < 0 && t > t0) { t0 = t; enters = i; }
+        if(fw < 0 && t < t1) { t1 = t; leaves = i; }
+      }
+    }
+    if(outside || t0 >= t1) continue;
+    const Eigen::Vector2d p = in_plane((1 - t0) * u + t0 * w), q = in_plane((1 - t1) * u + t1 * w);
+    shoelace(p, q);
+    if(enters >= 0) hits[std::size_t(enters)].push_back(position_on_edge(enters, p));
+    if(leaves >= 0) hits[std::size_t(leaves)].push_back(position_on_edge(leaves, q));
+  }
+  for(int i = 0; i < 3; ++i) {
+    std::vector<double>& h = hits[std::size_t(i)];
+    h.push_back(0);
+    h.push_back(1);
+    std::sort(h.begin(), h.end());
+    const Eigen::Vector3d& a = corner[std::size_t(i)];
+    const Eigen::Vector3d& b = corner[std::size_t((i + 1) % 3)];
+    for(std::size_t k = 0; k + 1 < h.size(); ++k) {
+      if(!(h[k + 1] > h[k])) continue;
+      const Eigen::Vector3d mid = (a + 0.5 * (h[k] + h[k + 1]) * (b - a)).normalized();
+      bool degenerate = false;
+      bool enclosed = centroid_enclosed != ring.crossing_parity(centroid, mid, near, degenerate);
+      if(degenerate) enclosed = ring.encloses(mid);
+      if(enclosed) shoelace(in_plane(a + h[k] * (b - a)), in_plane(a + h[k + 1] * (b - a)));
+    }
+  }
+  const double fraction = twice_covered / twice_area;
+  if(!(fraction > -1e-9 && fraction < 1 + 1e-9)) return -1;
+  return std::clamp(fraction, 0., 1.);
+}
+
+/// The share of a face covered by a polygon (exterior ring minus holes) from
+/// enclosed_face_fraction(); negative if one ring's is ill-posed. `side[g][k]`: whether
+/// the face's centroid is enclosed by ring g; `near[g][k]`: ring g's edges near the face.
+inline double exact_polygon_fraction(const std::vector<Spherical_ring>& rings,
+                                     const std::vector<std::vector<std::vector<int> > >& near,
+                                     const std::vector<std::vector<char> >& side, std::size_t k,
+                                     const Eigen::Vector3d& centroid, const std::array<Eigen::Vector3d, 3>& corner)
+{
+  double covered = 0;
+  for(std::size_t g = 0; g < rings.size(); ++g) {
+    const double f = near[g][k].empty() ? double(side[g][k] == 1)
+                                        : enclosed_face_fraction(rings[g], near[g][k], centroid, side[g][k] == 1, corner);
+    if(f < 0) return -1;
+    covered += g == 0 ? f : -f;
+  }
+  return std::max(0., covered);
+}
+
 /// The fraction of each face of (X, F) (a mesh of the unit sphere, vertices on it)
-/// covered by each polygon of each region, with s^2 samples per face near a boundary.
+/// covered by each polygon of each region, with s^2 samples per face near a boundary
+/// (s = subdivision), or exact where well posed (subdivision 0; 8 x 8 samples then
+/// only measure the overlaps between regions).
 inline Face_region_overlaps face_region_overlaps(const Matrix& X, const Index_matrix& F,
                                                  const std::vector<Spherical_region>& regions, int subdivision)
 {
   const std::size_t m = std::size_t(F.rows());
   const Sphere_faces faces(X, F);
-  const std::vector<Eigen::Vector3d> bary = subtriangle_centroids(subdivision);
+  const bool exact_fractions = subdivision == 0;
+  const std::vector<Eigen::Vector3d> bary = subtriangle_centroids(exact_fractions ? 8 : subdivision);
   const double sample_weight = 1. / double(bary.size());
   std::vector<std::vector<std::pair<std::size_t, double> > > parts(m);
   // per face: which samples are covered already (for overlaps), only for faces near a boundary
@@ -492,6 +606,10 @@ inline Face_region_overlaps face_region_overlaps(const Matrix& X, const Index_ma
             if(covered[f][s]) overlapping += sample_weight;
             covered[f][s] = 1;
           }
+          if(exact_fractions) { // where it is well posed
+            const double exact = exact_polygon_fraction(rings, near, side, k, faces.centroid[f], {{a, b, c}});
+            if(exact >= 0) fraction = exact;
+          }
           if(fraction == 0) continue;
         }
         if(region_fraction[f] == 0) touched.push_back(f);
@@ -510,6 +628,28 @@ inline Face_region_overlaps face_region_overlaps(const Matrix& X, const Index_ma
   out.parts = std::move(parts);
   out.overlapping_fraction = overlapping;
   return out;
+}
+
+/// The area to the left of a closed chain of points of the unit sphere joined by
+/// great-circle arcs, in [0, 4 pi): a fan of signed triangles from the chain's mean
+/// direction, so that a small ring is not the difference of large areas. Unlike
+/// Spherical_ring, it takes any chain (repeated or nearly coincident points, as a boundary
+/// shrunk by a map may have).
+inline double area_to_the_left(const std::vector<Lon_lat>& ring)
+{
+  std::vector<Eigen::Vector3d> v;
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for(const Lon_lat& x : ring) {
+    v.push_back(unit_vector(x));
+    mean += v.back();
+  }
+  const Eigen::Vector3d apex = mean.norm() > 1e-9 ? mean.normalized().eval() : Eigen::Vector3d::UnitZ();
+  double sum = 0;
+  for(std::size_t i = 0; i < v.size(); ++i) sum += signed_triangle_area(apex, v[i], v[(i + 1) % v.size()]);
+  const double four_pi = 4 * 3.14159265358979323846;
+  double left = std::fmod(sum, four_pi);
+  if(left < 0) left += four_pi;
+  return left;
 }
 
 /// Points every `step` radians (at most) along the great-circle arc from a to b,
