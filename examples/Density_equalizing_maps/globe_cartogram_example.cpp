@@ -42,6 +42,9 @@ int main()
     region("Antarctica", south)};                                        // around the south pole
   const std::vector<double> values = {6, 3, 1};
 
+  // vertices next to a border onto it: the faces along it hold no thin slivers of a region
+  DEM::snap_globe_to_region_borders(globe, regions);
+
   auto cartogram = globe.add_property_map<Mesh::Vertex_index, K::Point_3>("v:cartogram").first;
   const DEM::Globe_cartogram_report r = DEM::globe_cartogram(globe, regions, values, cartogram);
   for(std::size_t k = 0; k < regions.size(); ++k)
@@ -52,5 +55,8 @@ int main()
 
   const std::vector<DEM::Spherical_region> moved = DEM::push_forward_region_boundaries(globe, cartogram, regions);
   std::cout << "the Pacific border has " << moved[0].polygons[0].rings[0].size() << " points on the cartogram\n";
+  // the output polygons measured as spherical polygons, as a reader of them would
+  const std::vector<double> area = DEM::pushed_forward_region_areas(regions, moved);
+  std::cout << "the Pacific's area on the cartogram: " << area[0] << " (of 4 pi)\n";
   return r.fold_overs == 0 ? 0 : 1;
 }

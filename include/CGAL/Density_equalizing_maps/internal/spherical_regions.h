@@ -51,6 +51,7 @@
 #include <array>
 #include <cmath>
 #include <deque>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -628,6 +629,90 @@ inline Face_region_overlaps face_region_overlaps(const Matrix& X, const Index_ma
   out.parts = std::move(parts);
   out.overlapping_fraction = overlapping;
   return out;
+}
+
+/// The point of the minor arc ab nearest to p (all on the unit sphere).
+inline Eigen::Vector3d nearest_point_on_arc(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b)
+{
+  const Eigen::Vector3d n = a.cross(b).normalized();
+  const Eigen::Vector3d foot = p - p.dot(n) * n;
+  if(foot.norm() > 1e-12 && a.cross(foot).dot(n) >= 0 && foot.cross(b).dot(n) >= 0) return foot.normalized();
+  return p.dot(a) >= p.dot(b) ? a : b;
+}
+
+/// Moves every vertex of the sphere mesh (X, F) that lies within `reach` radians of a
+/// region's border onto the nearest point of that border, unless that would turn over or
+/// flatten one of its faces (exact orientation about the centre). Returns the number moved.
+///
+/// Why: a border that passes a vertex closely cuts thin slivers off the faces around it.
+/// With exact overlaps every sliver counts, and a face holding a sliver of a region that a
+/// cartogram must shrink a thousandfold must shrink with it, though the rest of the face is
+/// sea; through the vertex, the border leaves those faces alone.
+inline std::size_t snap_vertices_to_borders(Matrix& X, const Index_matrix& F, const std::vector<Spherical_region>& regions,
+                                            double reach)
+{
+  const Eigen::Index n = X.rows();
+  // spatial hash of the vertices, cells of side `reach` (chord lengths)
+  const double cell = std::max(reach, 1e-9);
+  auto key = [&](const Eigen::Vector3d& x) {
+    const auto c = [&](double v) { return long(std::floor((v + 1.5) / cell)); };
+    return std::array<long, 3>{{c(x.x()), c(x.y()), c(x.z())}};
+  };
+  std::map<std::array<long, 3>, std::vector<Eigen::Index> > grid;
+  for(Eigen::Index i = 0; i < n; ++i) grid[key(X.row(i).transpose())].push_back(i);
+  const std::size_t nv = static_cast<std::size_t>(n);
+  std::vector<double> best(nv, reach);
+  std::vector<Eigen::Vector3d> target(nv);
+  std::vector<char> has_target(nv, 0);
+  for(const Spherical_region& r : regions)
+    for(std::size_t p = 0; p < r.polygons.size(); ++p)
+      for(const Spherical_ring& ring : polygon_rings(r.polygons[p], "region \"" + r.id + "\", polygon " + std::to_string(p)))
+        for(std::size_t e = 0; e < ring.size(); ++e) {
+          const Eigen::Vector3d& a = ring.vertex(e);
+          const Eigen::Vector3d& b = ring.next_vertex(e);
+          const double length = std::acos(std::clamp(a.dot(b), -1., 1.));
+          const int steps = std::max(1, int(std::ceil(length / (0.5 * cell))));
+          std::vector<std::array<long, 3> > seen;
+          for(int k = 0; k <= steps; ++k) {
+            const Eigen::Vector3d x = (a + (b - a) * (double(k) / steps)).normalized();
+            const std::array<long, 3> c = key(x);
+            for(long dx = -1; dx <= 1; ++dx)
+              for(long dy = -1; dy <= 1; ++dy)
+                for(long dz = -1; dz <= 1; ++dz) {
+                  const std::array<long, 3> q{{c[0] + dx, c[1] + dy, c[2] + dz}};
+                  if(std::find(seen.begin(), seen.end(), q) != seen.end()) continue;
+                  seen.push_back(q);
+                  const auto it = grid.find(q);
+                  if(it == grid.end()) continue;
+                  for(Eigen::Index i : it->second) {
+                    const Eigen::Vector3d v = X.row(i).transpose().normalized();
+                    const Eigen::Vector3d y = nearest_point_on_arc(v, a, b);
+                    const double d = std::acos(std::clamp(v.dot(y), -1., 1.));
+                    if(d < best[std::size_t(i)]) {
+                      best[std::size_t(i)] = d;
+                      target[std::size_t(i)] = y;
+                      has_target[std::size_t(i)] = 1;
+                    }
+                  }
+                }
+          }
+        }
+  std::vector<std::vector<Eigen::Index> > faces_of(nv);
+  for(Eigen::Index f = 0; f < F.rows(); ++f)
+    for(int j = 0; j < 3; ++j) faces_of[std::size_t(F(f, j))].push_back(f);
+  std::size_t moved = 0;
+  for(Eigen::Index i = 0; i < n; ++i) {
+    if(!has_target[std::size_t(i)]) continue;
+    const Eigen::RowVector3d old = X.row(i);
+    X.row(i) = target[std::size_t(i)].transpose();
+    bool valid = true;
+    for(Eigen::Index f : faces_of[std::size_t(i)])
+      valid = valid && orientation_about_center(X.row(F(f, 0)).transpose(), X.row(F(f, 1)).transpose(),
+                                                X.row(F(f, 2)).transpose()) > 0;
+    if(valid) ++moved;
+    else X.row(i) = old;
+  }
+  return moved;
 }
 
 /// The area to the left of a closed chain of points of the unit sphere joined by
