@@ -10,6 +10,7 @@
 //  - a polygon across the antimeridian and one around the south pole give the shares of the
 //    same polygons rotated away from both, and their values' shares within 1 %;
 //  - a region with a hole, and the region in its hole;
+//  - snapping the globe to the borders moves vertices onto them, within reach, fold-free;
 //  - a near-empty region around a pole (value share 1e-4, as Antarctica's population):
 //    the region-area correction after the passes lowers the largest error tenfold, and
 //    the report says whether 1 % was reached (`known`: the 1 % itself); the boundaries

@@ -523,6 +523,13 @@ inline std::vector<double> pushed_forward_region_areas(const std::vector<Spheric
 /// says in `Globe_cartogram_report::correction_message` why it stopped short.
 /// The sea keeps the share of the population the sea density gives it. Each pass and each
 /// correction step is fold-free (certified by exact predicates), so is their composition.
+/// The passes and the correction measure areas on the mesh (covered fractions of the faces
+/// times their deformed flat areas); the report's area shares and errors, and the test
+/// of the tolerance that ends the correction, are those of the regions' boundaries carried
+/// through the map (`push_forward_region_boundaries()`) measured as spherical polygons,
+/// which is what a reader of the output sees (`max_relative_error_on_mesh` keeps the
+/// mesh's measure). For exact overlaps without thin slivers, snap the globe to the borders
+/// first (`snap_globe_to_region_borders()`).
 ///
 /// \tparam TriangleMesh a model of `FaceListGraph` and `HalfedgeGraph`
 /// \tparam VertexPointOutMap a writable vertex property map with 3D points as values
