@@ -363,6 +363,7 @@ void test_near_empty_polar_region(const Globe& g, bool known)
   const DEM::Globe_cartogram_report rep = cartogram(snapped, regions, {1., 6000., 4000.}, &mapped);
   std::cout << "  largest error after the passes " << rep.max_error_before_correction << ", after "
             << rep.correction_iterations << " correction iterations " << rep.max_relative_error
+            << " (on the mesh " << rep.max_relative_error_on_mesh << ")"
             << (rep.correction_message.empty() ? "" : " (" + rep.correction_message + ")") << "\n";
   if(known) {
     check(rep.max_relative_error <= 0.01, "near-empty polar region: every region within 1 % of its value share");
