@@ -416,6 +416,8 @@ void test_command_line()
     check(m["max_relative_area_error"].get<double>() <= 0.01, "metrics: max relative area error within 1 %");
     check(m.contains("max_relative_area_error_on_mesh") && m["max_relative_area_error_on_mesh"].get<double>() <= 0.01,
           "metrics: the error measured on the mesh, within 1 % too");
+    check(m.contains("sampled_overlaps") && m.contains("vertices_snapped_to_borders"),
+          "metrics: how many overlaps fell back to samples and how many globe vertices were snapped");
     check(m.contains("correction_iterations") && m.contains("max_relative_area_error_before_correction") &&
             m["max_relative_area_error_before_correction"].get<double>() >= m["max_relative_area_error"].get<double>(),
           "metrics: the region-area correction's iterations and the error before it");

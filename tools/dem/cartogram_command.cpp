@@ -309,6 +309,7 @@ int cartogram_command(const std::vector<std::string>& args)
   m["sea_density"] = pop.sea_density;
   m["mean_land_density"] = pop.mean_land_density;
   m["input_overlap_area"] = pop.overlapping_area;
+  m["sampled_overlaps"] = pop.sampled_overlaps;
   m["last_pass_iterations"] = rep.last_pass.iterations;
   m["last_pass_termination"] = rep.last_pass.termination == DEM::Termination::CONVERGED ? "converged" : "not converged";
   nlohmann::json too_small = nlohmann::json::array(), per = nlohmann::json::array();
@@ -375,7 +376,9 @@ int cartogram_command(const std::vector<std::string>& args)
   std::cout << "cartogram: " << geo.regions.size() << " regions, " << nf << " faces, " << rep.passes
             << " passes, " << rep.correction_iterations << " correction iterations, max relative area error "
             << rep.max_relative_error << ", mean " << rep.mean_relative_error
-            << " (" << rep.too_small.size() << " regions too small), fold-overs " << rep.fold_overs << ", "
+            << " (" << rep.too_small.size() << " regions too small), " << snapped_vertices
+            << " vertices snapped to the borders, " << pop.sampled_overlaps << " overlaps sampled, fold-overs "
+            << rep.fold_overs << ", "
             << m["seconds"].get<double>() << " s" << std::endl;
   if(!rep.converged)
     std::cerr << "dem: note: the area tolerance " << o.area_tolerance << " was not reached in " << rep.passes

@@ -44,6 +44,9 @@ struct Region_populations
   double sea_density = 0;              ///< the population per unit area given to the sea
   double mean_land_density = 0;        ///< total value / `land_area`
   double overlapping_area = 0;         ///< area covered by more than one region (0 for a clean input)
+  /// (face, polygon) overlaps that were asked exact but sampled instead, because a ring edge
+  /// runs along an edge of the face (`overlap_subdivision(0)`; 0 when every overlap is exact)
+  std::size_t sampled_overlaps = 0;
 };
 
 /// \ingroup PkgDensityEqualizingMapsCartogram
@@ -184,6 +187,7 @@ Region_populations region_populations(const Mesh_arrays<TriangleMesh>& a, const 
   out.face_area = flat_face_areas(a.X, a.F);
   const double mean_face = std::accumulate(out.face_area.begin(), out.face_area.end(), 0.) / double(out.face_area.size());
   out.overlapping_area = o.overlapping_fraction * mean_face;
+  out.sampled_overlaps = o.sampled_overlaps;
   region_areas(out.face_parts, out.face_area, regions.size(), out.region_area, out.sea_area);
   out.land_area = std::accumulate(out.region_area.begin(), out.region_area.end(), 0.);
   if(!(out.land_area > 0)) throw Invalid_input("the regions cover no part of the globe mesh");

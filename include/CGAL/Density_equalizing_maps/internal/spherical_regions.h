@@ -338,6 +338,7 @@ struct Face_region_overlaps
 {
   std::vector<std::vector<std::pair<std::size_t, double> > > parts; ///< per face
   double overlapping_fraction = 0; ///< sum over faces of the fraction covered by more than one region (face units)
+  std::size_t sampled_overlaps = 0; ///< exact overlaps asked for but ill-posed (a ring edge along a face's edge): sampled
 };
 
 /// The centroid, bounding cap and neighbours of each face of a mesh on the unit sphere.
@@ -528,6 +529,7 @@ inline Face_region_overlaps face_region_overlaps(const Matrix& X, const Index_ma
   std::vector<std::vector<unsigned char> > covered(m);
   std::vector<double> total(m, 0.);
   double overlapping = 0;
+  std::size_t sampled = 0;
 
   std::vector<int> face_slot(m, -1);
   for(std::size_t r = 0; r < regions.size(); ++r) {
@@ -610,6 +612,7 @@ inline Face_region_overlaps face_region_overlaps(const Matrix& X, const Index_ma
           if(exact_fractions) { // where it is well posed
             const double exact = exact_polygon_fraction(rings, near, side, k, faces.centroid[f], {{a, b, c}});
             if(exact >= 0) fraction = exact;
+            else ++sampled;
           }
           if(fraction == 0) continue;
         }
@@ -628,6 +631,7 @@ inline Face_region_overlaps face_region_overlaps(const Matrix& X, const Index_ma
   Face_region_overlaps out;
   out.parts = std::move(parts);
   out.overlapping_fraction = overlapping;
+  out.sampled_overlaps = sampled;
   return out;
 }
 
