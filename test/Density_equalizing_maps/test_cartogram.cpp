@@ -16,6 +16,9 @@
 //    the region-area correction after the passes lowers the largest error tenfold, and
 //    the report says whether 1 % was reached (`known`: the 1 % itself); the boundaries
 //    pushed forward through that map are the exact image of the rings;
+//  - coarse to fine (make_cartogram_globe(), coarse_globe_vertices) on a globe subdivided
+//    once from a coarse one, with a polar region shrunk tenfold: the carried map turns no
+//    face over, the result is fold-free and within 1 %; a globe not built for it is refused;
 //  - every cartogram is fold-free (exact count);
 //  - `dem cartogram`: a run writes its four outputs (the deformed regions read back, same
 //    ids, closed rings); each GeoJSON / CSV error gives exit 3, a message naming the
@@ -382,6 +385,52 @@ void test_near_empty_polar_region(const Globe& g, bool known)
   check(d <= 1e-9, "the pushed-forward boundaries are the exact image of the rings (midpoints pull back onto them)");
 }
 
+/// Coarse to fine (issue 17 item 5): on a globe that make_cartogram_globe() builds as a
+/// midpoint subdivision of a snapped coarse globe, globe_cartogram() runs its passes on the
+/// coarse globe and carries the map up: the carried map must be fold-free (each fine face
+/// lies inside a coarse one), and the regions within 1 % of their value shares, with a
+/// polar region that must shrink tenfold and one across the antimeridian.
+void test_coarse_to_fine()
+{
+  std::cout << "coarse to fine: 16,002 vertices from 4,002\n";
+  const std::vector<DEM::Spherical_region> regions = {
+    region("across the antimeridian", {{{160, -20}, {-160, -20}, {-160, 20}, {160, 20}}}),
+    region("around the south pole", {parallel(-60, 36, true)}),
+    region("elsewhere", {circle(60, 30, 15, 60)})};
+  const std::vector<double> values = {5, 0.05, 2};
+  Globe g;
+  const DEM::Cartogram_globe made = DEM::make_cartogram_globe(g, regions, 16000);
+  check(made.coarse_globe_vertices == 4002 && made.subdivisions == 1 && g.number_of_vertices() == 16002,
+        "make_cartogram_globe: 16,002 vertices as one subdivision of 4,002 (got " +
+          std::to_string(g.number_of_vertices()) + " from " + std::to_string(made.coarse_globe_vertices) + ")");
+  check(made.snapped_vertices > 0, "make_cartogram_globe snaps the coarse globe to the borders");
+  auto out = g.add_property_map<Globe::Vertex_index, Point>("v:out").first;
+  const DEM::Globe_cartogram_report rep = DEM::globe_cartogram(
+    g, regions, values, out, DEM::parameters::coarse_globe_vertices(made.coarse_globe_vertices));
+  for(std::size_t r = 0; r < regions.size(); ++r)
+    std::cout << "  " << regions[r].id << ": value share " << rep.value_share[r] << ", area share " << rep.area_share[r]
+              << " (relative error " << rep.relative_error[r] << ")\n";
+  std::cout << "  coarse globes " << rep.coarse_globes.size() << (rep.coarse_globe_message.empty() ? "" : " (" + rep.coarse_globe_message + ")")
+            << ", correction iterations " << (rep.coarse_globes.empty() ? 0 : rep.coarse_globes[0].correction_iterations)
+            << " + " << rep.correction_iterations << ", largest error " << rep.max_relative_error
+            << (rep.correction_message.empty() ? "" : " (" + rep.correction_message + ")") << "\n";
+  check(rep.coarse_globes.size() == 1 && rep.coarse_globes[0].vertices == 4002,
+        "the cartogram ran on the coarse globe first");
+  check(rep.coarse_globe_message.empty(), "the coarse globe's map carried to the fine globe turns no face over");
+  check(rep.fold_overs == 0, "coarse to fine: fold-free (exact count " + std::to_string(rep.fold_overs) + ")");
+  check(rep.converged && rep.max_relative_error <= 0.01, "coarse to fine: every region within 1 % of its value share");
+  // a globe that make_cartogram_globe() did not build for these regions is refused
+  bool refused = false;
+  try {
+    Globe other = geodesic_globe(40); // the same vertex count, not snapped
+    auto o = other.add_property_map<Globe::Vertex_index, Point>("v:out").first;
+    DEM::globe_cartogram(other, regions, values, o, DEM::parameters::coarse_globe_vertices(std::size_t(4002)));
+  } catch(const DEM::Invalid_input& e) {
+    refused = std::string(e.what()).find("coarse_globe_vertices") != std::string::npos;
+  }
+  check(refused, "coarse_globe_vertices with a globe make_cartogram_globe() did not build: Invalid_input naming it");
+}
+
 #ifdef DEM_HAVE_CARTOGRAM
 void test_command_line()
 {
@@ -471,6 +520,7 @@ int main(int argc, char** argv)
   test_antimeridian_and_pole(coarse, fine);
   test_hole(coarse);
   test_near_empty_polar_region(coarse, false);
+  test_coarse_to_fine();
 #ifdef DEM_HAVE_CARTOGRAM
   test_command_line();
 #else

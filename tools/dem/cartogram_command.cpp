@@ -47,7 +47,7 @@ struct Cartogram_options
   std::optional<double> time_step, tolerance;
   std::optional<std::size_t> max_iterations;
   double area_tolerance = 0.01;
-  bool quiet = false;
+  bool quiet = false, single_level = false;
 };
 
 const char* cartogram_usage =
@@ -59,7 +59,10 @@ const char* cartogram_usage =
   "  --value-column COL       the value column (default: the other column of a 2-column table)\n"
   "  --sea-density mean|D     population per steradian of the sea (default mean: the mean land density)\n"
   "  --vertices N             vertices of the globe mesh, an icosahedral geodesic sphere (default 50000;\n"
-  "                           the nearest 10 f^2 + 2 is used)\n"
+  "                           the nearest 10 f^2 + 2 with f = f0 2^k, f0 <= 20, is used: k midpoint\n"
+  "                           subdivisions of a coarse globe, on which the passes run; see --single-level)\n"
+  "  --single-level           the nearest 10 f^2 + 2 vertices, the passes and the correction on that globe\n"
+  "                           alone (minutes instead of seconds on 100,000 faces)\n"
   "  --passes P               at most P density-equalizing passes (default 8; they stop at the\n"
   "                           first that does not halve the largest area error, and a\n"
   "                           region-area correction follows if the tolerance is not met)\n"
@@ -90,6 +93,7 @@ int parse(const std::vector<std::string>& args, Cartogram_options& o)
     const std::string& a = args[i];
     if(a == "--help" || a == "-h") { std::cout << cartogram_usage; return 0; }
     if(a == "--quiet") { o.quiet = true; continue; }
+    if(a == "--single-level") { o.single_level = true; continue; }
     if(a.size() > 1 && a[0] == '-' && a[1] == '-') {
       if(i + 1 >= args.size()) return usage_error("option " + a + " needs a value");
       const std::string& v = args[++i];
@@ -190,7 +194,7 @@ int cartogram_command(const std::vector<std::string>& args)
   DEM::Globe_cartogram_report rep;
   std::vector<DEM::Spherical_region> deformed;
   std::vector<Point> mapped;
-  std::size_t snapped_vertices = 0;
+  std::size_t snapped_vertices = 0, coarse_vertices = 0;
   try {
     stages->begin("reading " + o.regions);
     geo = DEM::IO::read_GeoJSON_regions(o.regions, o.id_property);
@@ -203,11 +207,17 @@ int cartogram_command(const std::vector<std::string>& args)
       values.push_back(it->second);
     }
     stages->begin("globe mesh");
-    const int f = std::max(1, int(std::lround(std::sqrt(std::max(0., double(o.vertices) - 2) / 10))));
-    const DEM::internal::Triangle_arrays t = DEM::internal::geodesic_sphere(f);
-    DEM::internal::write_triangle_mesh(t.X, t.F, globe);
-    // the globe's vertices next to a border onto it: no thin slivers for the exact overlaps
-    snapped_vertices = DEM::snap_globe_to_region_borders(globe, geo.regions);
+    if(o.single_level) {
+      const int f = std::max(1, int(std::lround(std::sqrt(std::max(0., double(o.vertices) - 2) / 10))));
+      const DEM::internal::Triangle_arrays t = DEM::internal::geodesic_sphere(f);
+      DEM::internal::write_triangle_mesh(t.X, t.F, globe);
+      // the globe's vertices next to a border onto it: no thin slivers for the exact overlaps
+      snapped_vertices = DEM::snap_globe_to_region_borders(globe, geo.regions);
+    } else {
+      const DEM::Cartogram_globe g = DEM::make_cartogram_globe(globe, geo.regions, o.vertices);
+      coarse_vertices = g.coarse_globe_vertices;
+      snapped_vertices = g.snapped_vertices;
+    }
     stages->begin("cartogram (population, density-equalizing passes, region-area correction)", o.tolerance.value_or(1e-3));
     auto out_map = globe.add_property_map<Globe::Vertex_index, Point>("v:cartogram").first;
     Stage_progress* sp = &*stages;
@@ -218,7 +228,8 @@ int cartogram_command(const std::vector<std::string>& args)
     };
     auto base = DEM::parameters::relative_area_tolerance(o.area_tolerance);
     auto np = DEM::parameters::combine(
-      base, DEM::parameters::number_of_passes(o.passes), DEM::parameters::pass_callback(pass_report),
+      base, DEM::parameters::coarse_globe_vertices(coarse_vertices),
+      DEM::parameters::number_of_passes(o.passes), DEM::parameters::pass_callback(pass_report),
       DEM::parameters::progress_callback(progress), DEM::parameters::time_step(o.time_step.value_or(0.1)),
       DEM::parameters::stopping_tolerance(o.tolerance.value_or(1e-3)),
       DEM::parameters::number_of_iterations((unsigned int)(o.max_iterations.value_or(200))));
@@ -260,7 +271,7 @@ int cartogram_command(const std::vector<std::string>& args)
   const DEM::Region_populations& pop = rep.populations;
   const std::size_t nf = pop.face_parts.size();
   std::vector<long> label(nf, -1);
-  std::vector<DEM::IO::Rgb> color(nf, DEM::IO::Rgb{{223, 233, 242}});
+  std::vector<DEM::IO::Rgb> color(nf, DEM::IO::Globe_picture().background); // the sea
   for(std::size_t k = 0; k < nf; ++k) {
     double best = 0, covered = 0;
     for(const auto& p : pop.face_parts[k]) {
@@ -291,6 +302,12 @@ int cartogram_command(const std::vector<std::string>& args)
   m["vertices"] = globe.number_of_vertices();
   m["faces"] = nf;
   m["vertices_snapped_to_borders"] = snapped_vertices;
+  nlohmann::json coarse = nlohmann::json::array();
+  for(const auto& c : rep.coarse_globes)
+    coarse.push_back({{"vertices", c.vertices}, {"correction_iterations", c.correction_iterations},
+                      {"max_relative_area_error_on_mesh", c.max_relative_error_on_mesh}});
+  m["coarse_globes"] = coarse;
+  if(!rep.coarse_globe_message.empty()) m["coarse_globe_message"] = rep.coarse_globe_message;
   m["regions"] = geo.regions.size();
   m["passes"] = rep.passes;
   m["max_error_after_pass"] = rep.max_error_after_pass;
@@ -376,7 +393,8 @@ int cartogram_command(const std::vector<std::string>& args)
   std::cout << "cartogram: " << geo.regions.size() << " regions, " << nf << " faces, " << rep.passes
             << " passes, " << rep.correction_iterations << " correction iterations, max relative area error "
             << rep.max_relative_error << ", mean " << rep.mean_relative_error
-            << " (" << rep.too_small.size() << " regions too small), " << snapped_vertices
+            << " (" << rep.too_small.size() << " regions too small), " << rep.coarse_globes.size()
+            << " coarse globe(s), " << snapped_vertices
             << " vertices snapped to the borders, " << pop.sampled_overlaps << " overlaps sampled, fold-overs "
             << rep.fold_overs << ", "
             << m["seconds"].get<double>() << " s" << std::endl;

@@ -11,6 +11,10 @@
 #include <CGAL/Density_equalizing_maps/spherical_density_equalizing_map.h>
 #include <CGAL/Density_equalizing_maps/internal/region_area_correction.h>
 #include <CGAL/Density_equalizing_maps/internal/spherical_regions.h>
+#include <CGAL/Density_equalizing_maps/internal/uniform_domain_mesh.h>
+
+#include <CGAL/Simple_cartesian.h>
+#include <CGAL/Surface_mesh.h>
 
 #include <CGAL/boost/graph/named_params_helper.h>
 #include <boost/property_map/function_property_map.hpp>
@@ -22,6 +26,7 @@
 #include <map>
 #include <memory>
 #include <numeric>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -81,6 +86,19 @@ struct Globe_cartogram_report
   std::size_t fold_overs = 0;         ///< exact fold-over count of the final map (0)
   Map_report last_pass;               ///< the report of the last pass
   Region_populations populations;     ///< the populations of the input globe
+  /// A coarser globe the cartogram was computed on first (see `coarse_globe_vertices`).
+  struct Coarse_globe
+  {
+    std::size_t vertices = 0;              ///< its vertices
+    std::size_t correction_iterations = 0; ///< of its region-area correction
+    /// its largest relative area error, on its mesh, over the regions held on the finest globe
+    double max_relative_error_on_mesh = 0;
+  };
+  /// the coarse globes, coarsest first (empty: the passes ran on this globe); the passes'
+  /// fields above (`passes`, `max_error_after_pass`, `last_pass`) are then the coarsest globe's
+  std::vector<Coarse_globe> coarse_globes;
+  /// why the coarse globes' map was not used, if it was not (it had to turn a face of this globe over)
+  std::string coarse_globe_message;
 };
 
 namespace internal {
@@ -507,74 +525,89 @@ inline std::vector<double> pushed_forward_region_areas(const std::vector<Spheric
   return area;
 }
 
-/// \ingroup PkgDensityEqualizingMapsCartogram
-/// \brief Computes a globe cartogram: a fold-free map of the globe onto itself under which
-/// every region's share of the land area is its share of the values.
-///
-/// The face populations are those of `face_populations_from_regions()`. The map is a
-/// composition of spherical density-equalizing maps (`spherical_density_equalizing_map()`),
-/// each started from the identity of the current globe: the first equalizes the face
-/// populations; as the flow stops at a tolerance on the density, not on the regions' areas,
-/// each further pass (as the planar cartogram tools of Gastner and Newman do) gives every
-/// region the density (target share) / (current share) on the deformed globe and flows again,
-/// until every region covering at least 50 faces has its area share within
-/// `relative_area_tolerance` of its value share, `number_of_passes` passes are done, or a
-/// pass does not halve the largest error (it is stalling on regions that must shrink by
-/// orders of magnitude). If the tolerance is not met then, a region-area correction
-/// follows: Gauss-Newton steps on the regions' areas (the regions too small for the mesh
-/// held together), each the smoothest displacement of the vertices that brings the areas
-/// closer to their targets, halved until no face turns over; it stops at the tolerance or
-/// says in `Globe_cartogram_report::correction_message` why it stopped short.
-/// The sea keeps the share of the population the sea density gives it. Each pass and each
-/// correction step is fold-free (certified by exact predicates), so is their composition.
-/// The passes and the correction measure areas on the mesh (covered fractions of the faces
-/// times their deformed flat areas); the report's area shares and errors, and the test
-/// of the tolerance that ends the correction, are those of the regions' boundaries carried
-/// through the map (`push_forward_region_boundaries()`) measured as spherical polygons,
-/// which is what a reader of the output sees (`max_relative_error_on_mesh` keeps the
-/// mesh's measure). For exact overlaps without thin slivers, snap the globe to the borders
-/// first (`snap_globe_to_region_borders()`).
-///
-/// \tparam TriangleMesh a model of `FaceListGraph` and `HalfedgeGraph`
-/// \tparam VertexPointOutMap a writable vertex property map with 3D points as values
-/// \param tm the globe: a closed genus-0 mesh with its vertices on the unit sphere
-/// \param regions the regions of the globe
-/// \param values one non-negative value per region
-/// \param sphere_map receives the image of each vertex on the unit sphere
-/// \param np optional named parameters: those of `face_populations_from_regions()`, those of
-///   `spherical_density_equalizing_map()` (used by every pass; `initial_map` and
-///   `face_population_map` are set by the passes), and:
-/// \cgalNamedParamsBegin
-///   \cgalParamNBegin{relative_area_tolerance}
-///     \cgalParamDescription{the largest relative error of a region's area share that stops the passes}
-///     \cgalParamType{double}
-///     \cgalParamDefault{0.01}
-///   \cgalParamNEnd
-///   \cgalParamNBegin{number_of_passes}
-///     \cgalParamDescription{the largest number of density-equalizing passes}
-///     \cgalParamType{unsigned int}
-///     \cgalParamDefault{8}
-///   \cgalParamNEnd
-///   \cgalParamNBegin{progress_callback}
-///     \cgalParamDescription{a callable `bool(std::size_t iteration, double error)`: called by every
-///       pass's SDEM iterations (their stopping quantity) and by the region-area correction
-///       (its iterations and the largest relative area error); returning `false` stops the
-///       pass, or the correction}
-///     \cgalParamDefault{none}
-///   \cgalParamNEnd
-///   \cgalParamNBegin{pass_callback}
-///     \cgalParamDescription{a callable `void(std::size_t pass, double max_relative_error)` called after each pass}
-///     \cgalParamDefault{none}
-///   \cgalParamNEnd
-/// \cgalNamedParamsEnd
-/// \pre as `face_populations_from_regions()` and `spherical_density_equalizing_map()` (checked)
-/// \returns the areas reached, the errors, the passes, and the populations used
-/// \throws Invalid_input on a violated precondition
-/// \throws Algorithm_failure if a pass cannot start (see `spherical_density_equalizing_map()`)
-template <class TriangleMesh, class VertexPointOutMap, class NamedParameters = parameters::Default_named_parameters>
-Globe_cartogram_report globe_cartogram(const TriangleMesh& tm, const std::vector<Spherical_region>& regions,
-                                       const std::vector<double>& values, VertexPointOutMap sphere_map,
-                                       const NamedParameters& np = parameters::default_values())
+namespace internal {
+
+/// A globe mesh and its map onto the sphere: the coarse cartogram a finer one starts from.
+struct Globe_map
+{
+  Matrix X, Y;
+  Index_matrix F;
+};
+
+/// The prolongation from a coarse globe (Xc, Fc) to the vertices X of a finer one:
+/// row i holds the barycentric coordinates of X_i in its face of the coarse globe.
+inline Sparse_matrix globe_prolongation(const Matrix& Xc, const Index_matrix& Fc, const Matrix& X)
+{
+  const Mapped_surface coarse(Xc, Fc, Xc, domain_shape(Unit_sphere_domain()));
+  std::vector<Eigen::Triplet<double> > t;
+  t.reserve(3 * std::size_t(X.rows()));
+  Surface_point last;
+  Eigen::Vector3d last_q = Eigen::Vector3d::Zero();
+  for(Eigen::Index i = 0; i < X.rows(); ++i) {
+    const Eigen::Vector3d q = row_vector3(X, i);
+    const Surface_point s = coarse.locate(q, coarse.hint_after(last_q, last, q));
+    if(s.face < 0) throw Algorithm_failure("vertex " + std::to_string(i) + " of the globe has no location on the coarse globe");
+    for(int c = 0; c < 3; ++c) t.emplace_back(i, Fc(s.face, c), s.barycentric[c]);
+    last = s;
+    last_q = q;
+  }
+  Sparse_matrix P(X.rows(), Xc.rows());
+  P.setFromTriplets(t.begin(), t.end());
+  return P;
+}
+
+/// The map P Yc of the finer globe, back on the unit sphere.
+inline Matrix prolonged_map(const Sparse_matrix& P, const Matrix& Yc)
+{
+  Matrix Y = P * Yc;
+  Y.rowwise().normalize();
+  return Y;
+}
+
+/// The vertex count of the geodesic sphere of frequency f.
+inline std::size_t geodesic_sphere_vertices(int f) { return 10 * std::size_t(f) * std::size_t(f) + 2; }
+
+/// The default reach of `snap_globe_to_region_borders()`, in mean edge lengths.
+constexpr double default_snapping_reach = 0.45;
+
+/// The globes of a coarse-to-fine cartogram, coarsest first: the geodesic
+/// sphere of frequency f0 with its vertices near a border snapped onto it,
+/// then `subdivisions` midpoint subdivisions of it. Each globe's faces lie
+/// inside (seen from the centre) those of the globe before, so that a fold-free
+/// map of one is carried to the next fold-free, face by face.
+inline std::vector<Triangle_arrays> cartogram_globe_levels(const std::vector<Spherical_region>& regions, int f0,
+                                                           int subdivisions, std::size_t* snapped = nullptr)
+{
+  std::vector<Triangle_arrays> g(1, geodesic_sphere(f0));
+  const std::size_t moved =
+    snap_vertices_to_borders(g[0].X, g[0].F, regions, default_snapping_reach * mean_edge_length(g[0].X, g[0].F));
+  if(snapped) *snapped = moved;
+  for(int k = 0; k < subdivisions; ++k) g.push_back(midpoint_subdivision_on_sphere(g.back()));
+  return g;
+}
+
+/// Whether (X, F) is the mesh m: the same points (to 1e-12) and the same faces
+/// (each up to a rotation of its corners).
+inline bool same_triangle_mesh(const Triangle_arrays& m, const Matrix& X, const Index_matrix& F)
+{
+  if(m.X.rows() != X.rows() || m.F.rows() != F.rows() || !((m.X - X).cwiseAbs().maxCoeff() < 1e-12)) return false;
+  for(Eigen::Index k = 0; k < F.rows(); ++k) {
+    int r = 0;
+    while(r < 3 && m.F(k, r) != F(k, 0)) ++r;
+    if(r == 3 || m.F(k, (r + 1) % 3) != F(k, 1) || m.F(k, (r + 2) % 3) != F(k, 2)) return false;
+  }
+  return true;
+}
+
+/// The cartogram on the globe `tm` (the body of `globe_cartogram()`), from the
+/// passes, or from the map of a coarser globe (`start`) carried to `tm`. The
+/// regions held to the tolerance are those covering at least 50 faces of the
+/// size of a globe of `finest_faces` faces (0: of `tm`).
+template <class TriangleMesh, class VertexPointOutMap, class NamedParameters>
+Globe_cartogram_report globe_cartogram_on(const TriangleMesh& tm, const std::vector<Spherical_region>& regions,
+                                          const std::vector<double>& values, VertexPointOutMap sphere_map,
+                                          const NamedParameters& np, const Globe_map* start,
+                                          std::size_t finest_faces = 0)
 {
   using CGAL::parameters::choose_parameter;
   using CGAL::parameters::get_parameter;
@@ -593,7 +626,11 @@ Globe_cartogram_report globe_cartogram(const TriangleMesh& tm, const std::vector
   const std::size_t nr = regions.size();
   const double total_value = std::accumulate(values.begin(), values.end(), 0.);
   const double total_population = total_value + pop.sea_density * pop.sea_area;
-  const double mean_face = std::accumulate(pop.face_area.begin(), pop.face_area.end(), 0.) / double(pop.face_area.size());
+  // faces of the size of those of the globe the cartogram is for (a coarse
+  // globe holds the regions that the finest globe holds)
+  const bool coarse_level = finest_faces > 0;
+  const double mean_face = std::accumulate(pop.face_area.begin(), pop.face_area.end(), 0.) /
+                           double(finest_faces > 0 ? finest_faces : pop.face_area.size());
   rep.value_share.resize(nr);
   rep.faces_covered.resize(nr);
   for(std::size_t r = 0; r < nr; ++r) {
@@ -686,7 +723,7 @@ Globe_cartogram_report globe_cartogram(const TriangleMesh& tm, const std::vector
   };
   // The region-area correction (internal/region_area_correction.h) from Y:
   // the passes stall where a region must shrink by orders of magnitude.
-  auto correct = [&]() {
+  auto correct = [&](const internal::Coarse_displacements* space, std::size_t max_iterations) {
     // One constraint per region held to the tolerance, one for the regions
     // too small for the mesh together (so that the land keeps its share
     // without a solve per small region), the sea as the rest.
@@ -721,37 +758,266 @@ Globe_cartogram_report globe_cartogram(const TriangleMesh& tm, const std::vector
           if(iteration > 0 && !get_parameter(np, internal_np::progress_callback)(iteration, rep.max_relative_error))
             return true;
         if(rep.max_relative_error > mesh_target) return false;
+        if(coarse_level) return true;
         measure_polygons(Z);
         if(rep.max_relative_error <= tolerance) return true;
         mesh_target = std::max(0.5 * mesh_target, 0.01 * tolerance);
         return false;
-      });
+      }, max_iterations, space);
     measure(Y, area, sea);
     rep.correction_iterations += c.iterations;
     rep.correction_message = c.message;
   };
 
-  for(std::size_t pass = 0; pass < max_passes; ++pass) {
-    const double before = rep.max_relative_error;
-    if(!run_pass() || rep.max_relative_error <= tolerance) break;
-    // A pass that does not halve the largest error is stalling: the flow is
-    // crushing faces next to regions that must shrink by orders of magnitude
-    // (the world's Antarctica), and further passes leave a mesh the
-    // correction can hardly move (benchmark/RESULTS.md).
-    if(!(rep.max_relative_error <= 0.5 * before)) break;
+  // The start: the coarse globe's map carried to this globe, if it turns no
+  // face of this globe over; the passes otherwise.
+  std::optional<internal::Coarse_displacements> coarse;
+  if(start) {
+    internal::Coarse_displacements c;
+    c.prolongation = internal::globe_prolongation(start->X, start->F, a.X);
+    c.map = start->Y;
+    c.faces = start->F;
+    // Each face of this globe lies inside one of the coarse globe (seen from the
+    // centre), where the map is linear: fold-free if the coarse map is (checked).
+    const internal::Matrix Z = internal::prolonged_map(c.prolongation, start->Y);
+    const std::size_t folds = internal::count_inverted_faces_about_center(Z, a.F);
+    if(folds == 0) {
+      Y = Z;
+      coarse = std::move(c);
+      measure(Y, area, sea);
+    } else {
+      rep.coarse_globe_message = "the coarse globe's map turns " + std::to_string(folds) +
+                                 " face(s) of this globe over; the passes ran on this globe";
+    }
+  }
+  if(!coarse) {
+    for(std::size_t pass = 0; pass < max_passes; ++pass) {
+      const double before = rep.max_relative_error;
+      if(!run_pass() || rep.max_relative_error <= tolerance) break;
+      // A pass that does not halve the largest error is stalling: the flow is
+      // crushing faces next to regions that must shrink by orders of magnitude
+      // (the world's Antarctica), and further passes leave a mesh the
+      // correction can hardly move (benchmark/RESULTS.md).
+      if(!(rep.max_relative_error <= 0.5 * before)) break;
+    }
   }
   rep.max_error_before_correction = rep.max_relative_error;
-  if(rep.max_relative_error <= tolerance) measure_polygons(Y); // the passes may have met it on the mesh only
+  // A coarse globe is a start for the finer ones: its mesh measure is enough
+  // there (its faces are large, and its polygons the finer globes correct).
+  auto measure_final = [&]() {
+    if(coarse_level) measure(Y, area, sea);
+    else measure_polygons(Y);
+  };
+  if(rep.max_relative_error <= tolerance) measure_final(); // the passes may have met it on the mesh only
   if(rep.max_relative_error > tolerance && rep.last_pass.fold_overs == 0) {
-    correct(); // another pass and correction after a stalled one do not help (RESULTS.md)
+    // another pass and correction after a stalled one do not help (RESULTS.md);
+    // in the coarse globe's displacements first (cheap), then in this globe's
+    if(coarse) {
+      correct(&*coarse, 60);
+      measure_final();
+    }
+    if(!coarse || rep.max_relative_error > tolerance) correct(nullptr, 200);
   }
   measure(Y, area, sea);
   rep.max_relative_error_on_mesh = rep.max_relative_error;
-  measure_polygons(Y);
+  measure_final();
   rep.converged = rep.max_relative_error <= tolerance;
   rep.fold_overs = internal::count_inverted_faces_about_center(Y, a.F);
   internal::write_points(a, Y, sphere_map);
   return rep;
+}
+
+} // namespace internal
+
+/// \ingroup PkgDensityEqualizingMapsCartogram
+/// \brief Computes a globe cartogram: a fold-free map of the globe onto itself under which
+/// every region's share of the land area is its share of the values.
+///
+/// The face populations are those of `face_populations_from_regions()`. The map is a
+/// composition of spherical density-equalizing maps (`spherical_density_equalizing_map()`),
+/// each started from the identity of the current globe: the first equalizes the face
+/// populations; as the flow stops at a tolerance on the density, not on the regions' areas,
+/// each further pass (as the planar cartogram tools of Gastner and Newman do) gives every
+/// region the density (target share) / (current share) on the deformed globe and flows again,
+/// until every region covering at least 50 faces has its area share within
+/// `relative_area_tolerance` of its value share, `number_of_passes` passes are done, or a
+/// pass does not halve the largest error (it is stalling on regions that must shrink by
+/// orders of magnitude). If the tolerance is not met then, a region-area correction
+/// follows: Gauss-Newton steps on the regions' areas (the regions too small for the mesh
+/// held together), each the smoothest displacement of the vertices that brings the areas
+/// closer to their targets, halved until no face turns over; it stops at the tolerance or
+/// says in `Globe_cartogram_report::correction_message` why it stopped short.
+/// The sea keeps the share of the population the sea density gives it. Each pass and each
+/// correction step is fold-free (certified by exact predicates), so is their composition.
+/// The passes and the correction measure areas on the mesh (covered fractions of the faces
+/// times their deformed flat areas); the report's area shares and errors, and the test
+/// of the tolerance that ends the correction, are those of the regions' boundaries carried
+/// through the map (`push_forward_region_boundaries()`) measured as spherical polygons,
+/// which is what a reader of the output sees (`max_relative_error_on_mesh` keeps the
+/// mesh's measure). For exact overlaps without thin slivers, snap the globe to the borders
+/// first (`snap_globe_to_region_borders()`).
+///
+/// <b>Coarse to fine.</b> On a globe built by `make_cartogram_globe()` (midpoint
+/// subdivisions of a coarse geodesic sphere), with `coarse_globe_vertices` set to the count
+/// it returned, the passes and a first correction run on the coarse globe, which holds the
+/// regions that cover 50 faces of `tm` (on its own mesh measure); its map is carried to each
+/// finer globe in turn (each face of a finer globe lies inside one of the globe below, where
+/// the map is linear, so the carried map is fold-free, checked by exact predicates) and the
+/// correction continues there, with displacements of the globe below (whose stiffness is
+/// factored once: a solve on a quarter of the vertices), then, if that stalls, of the globe's
+/// own vertices. The passes, the costly part on a fine globe (every SDEM iteration solves a
+/// diffusion system on the deformed globe), thus run on a few thousand vertices: the world's
+/// population cartogram on 103,680 faces takes seconds instead of minutes
+/// (benchmark/RESULTS.md). Every finer globe measures its regions with its own exact
+/// overlaps, and the finest ends with the same polygon test of the tolerance.
+///
+/// \tparam TriangleMesh a model of `FaceListGraph` and `HalfedgeGraph`
+/// \tparam VertexPointOutMap a writable vertex property map with 3D points as values
+/// \param tm the globe: a closed genus-0 mesh with its vertices on the unit sphere
+/// \param regions the regions of the globe
+/// \param values one non-negative value per region
+/// \param sphere_map receives the image of each vertex on the unit sphere
+/// \param np optional named parameters: those of `face_populations_from_regions()`, those of
+///   `spherical_density_equalizing_map()` (used by every pass; `initial_map` and
+///   `face_population_map` are set by the passes), and:
+/// \cgalNamedParamsBegin
+///   \cgalParamNBegin{relative_area_tolerance}
+///     \cgalParamDescription{the largest relative error of a region's area share that stops the passes}
+///     \cgalParamType{double}
+///     \cgalParamDefault{0.01}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{number_of_passes}
+///     \cgalParamDescription{the largest number of density-equalizing passes}
+///     \cgalParamType{unsigned int}
+///     \cgalParamDefault{8}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{progress_callback}
+///     \cgalParamDescription{a callable `bool(std::size_t iteration, double error)`: called by every
+///       pass's SDEM iterations (their stopping quantity) and by the region-area correction
+///       (its iterations and the largest relative area error); returning `false` stops the
+///       pass, or the correction}
+///     \cgalParamDefault{none}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{pass_callback}
+///     \cgalParamDescription{a callable `void(std::size_t pass, double max_relative_error)` called after each pass}
+///     \cgalParamDefault{none}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{coarse_globe_vertices}
+///     \cgalParamDescription{the count returned by `make_cartogram_globe()` for `tm`: compute coarse to fine
+///       (see above); 0: on `tm` alone}
+///     \cgalParamType{std::size_t}
+///     \cgalParamDefault{0}
+///   \cgalParamNEnd
+/// \cgalNamedParamsEnd
+/// \pre as `face_populations_from_regions()` and `spherical_density_equalizing_map()` (checked)
+/// \returns the areas reached, the errors, the passes, and the populations used
+/// \throws Invalid_input on a violated precondition, or if `tm` is not the globe
+///   `make_cartogram_globe()` builds for the regions with `coarse_globe_vertices`
+/// \throws Algorithm_failure if a pass cannot start (see `spherical_density_equalizing_map()`)
+template <class TriangleMesh, class VertexPointOutMap, class NamedParameters = parameters::Default_named_parameters>
+Globe_cartogram_report globe_cartogram(const TriangleMesh& tm, const std::vector<Spherical_region>& regions,
+                                       const std::vector<double>& values, VertexPointOutMap sphere_map,
+                                       const NamedParameters& np = parameters::default_values())
+{
+  using CGAL::parameters::get_parameter;
+  using CGAL::parameters::is_default_parameter;
+  if constexpr(is_default_parameter<NamedParameters, internal_np::coarse_globe_vertices_t>::value) {
+    return internal::globe_cartogram_on(tm, regions, values, sphere_map, np, nullptr);
+  } else {
+    const std::size_t coarse_vertices = get_parameter(np, internal_np::coarse_globe_vertices);
+    if(coarse_vertices == 0) return internal::globe_cartogram_on(tm, regions, values, sphere_map, np, nullptr);
+    // the globes below tm, rebuilt as make_cartogram_globe() built them
+    const internal::Mesh_arrays<TriangleMesh> a = internal::globe_arrays(tm, np);
+    const int f0 = int(std::lround(std::sqrt(double(coarse_vertices - 2) / 10)));
+    int subdivisions = 0;
+    while(internal::geodesic_sphere_vertices(f0 << subdivisions) < std::size_t(a.X.rows()) && subdivisions < 16) ++subdivisions;
+    const std::vector<internal::Triangle_arrays> levels = internal::cartogram_globe_levels(regions, f0, subdivisions);
+    const internal::Triangle_arrays& finest = levels.back();
+    if(internal::geodesic_sphere_vertices(f0) != coarse_vertices || subdivisions == 0 ||
+       !internal::same_triangle_mesh(finest, a.X, a.F))
+      throw Invalid_input("the globe is not one that make_cartogram_globe() builds on a coarse globe of " +
+                          std::to_string(coarse_vertices) + " vertices (coarse_globe_vertices)");
+    typedef CGAL::Simple_cartesian<double>::Point_3 Point;
+    typedef CGAL::Surface_mesh<Point> Globe;
+    std::optional<internal::Globe_map> start;
+    std::vector<Globe_cartogram_report> coarse_reports;
+    for(std::size_t k = 0; k + 1 < levels.size(); ++k) {
+      Globe globe;
+      internal::write_triangle_mesh(levels[k].X, levels[k].F, globe);
+      auto image = globe.template add_property_map<typename Globe::Vertex_index, Point>("v:cartogram").first;
+      coarse_reports.push_back(internal::globe_cartogram_on(
+        globe, regions, values, image,
+        parameters::combine(np, parameters::vertex_point_map(get(CGAL::vertex_point, globe)),
+                            parameters::vertex_index_map(get(CGAL::vertex_index, globe))),
+        start ? &*start : nullptr, std::size_t(finest.F.rows())));
+      internal::Globe_map g;
+      g.X = levels[k].X;
+      g.F = levels[k].F;
+      g.Y.resize(g.X.rows(), 3);
+      for(auto v : globe.vertices()) g.Y.row(Eigen::Index(v.idx())) << image[v].x(), image[v].y(), image[v].z();
+      start = std::move(g);
+    }
+    Globe_cartogram_report rep = internal::globe_cartogram_on(tm, regions, values, sphere_map, np, &*start);
+    if(rep.coarse_globe_message.empty()) { // the passes are the coarsest globe's
+      const Globe_cartogram_report& coarsest = coarse_reports.front();
+      rep.passes = coarsest.passes;
+      rep.max_error_after_pass = coarsest.max_error_after_pass;
+      rep.last_pass = coarsest.last_pass;
+    }
+    for(std::size_t k = 0; k < coarse_reports.size(); ++k) {
+      Globe_cartogram_report::Coarse_globe level;
+      level.vertices = std::size_t(levels[k].X.rows());
+      level.correction_iterations = coarse_reports[k].correction_iterations;
+      level.max_relative_error_on_mesh = coarse_reports[k].max_relative_error;
+      rep.coarse_globes.push_back(level);
+    }
+    return rep;
+  }
+}
+
+/// \ingroup PkgDensityEqualizingMapsCartogram
+/// What `make_cartogram_globe()` built.
+struct Cartogram_globe
+{
+  /// the vertices of the coarse globe (pass it to `globe_cartogram()` as `coarse_globe_vertices`),
+  /// 0 if the globe is not subdivided
+  std::size_t coarse_globe_vertices = 0;
+  std::size_t subdivisions = 0;     ///< midpoint subdivisions from the coarse globe to the globe
+  std::size_t snapped_vertices = 0; ///< vertices of the coarse globe snapped to a border
+};
+
+/// \ingroup PkgDensityEqualizingMapsCartogram
+/// \brief Builds a globe mesh on which `globe_cartogram()` can work coarse to fine.
+///
+/// The globe is the icosahedral geodesic sphere of frequency \f$ f = f_0 2^k \f$ nearest to
+/// `vertices` (\f$ 10 f^2 + 2 \f$ vertices) with \f$ f_0 \leq 20 \f$ (at most 4,002 vertices on
+/// the coarse globe), built as \f$ k \f$ midpoint subdivisions of the geodesic sphere of
+/// frequency \f$ f_0 \f$ whose vertices near a border are snapped onto it (as
+/// `snap_globe_to_region_borders()` does). Pass `coarse_globe_vertices` of the result to
+/// `globe_cartogram()`: it then runs its passes on the coarse globe and carries the map up
+/// the subdivisions, correcting the regions' areas on each globe (see `globe_cartogram()`).
+/// Up to 4,002 vertices (\f$ k = 0 \f$) the globe is the snapped geodesic sphere itself.
+///
+/// \tparam PolygonMesh a model of `MutableFaceGraph` with a vertex point map
+/// \param globe receives the globe (its content is replaced); vertices in the order of construction
+/// \param regions the regions whose borders the coarse globe is snapped to
+/// \param vertices about how many vertices the globe should have (at least 12)
+/// \throws Invalid_input on an invalid ring or fewer than 12 vertices asked
+template <class PolygonMesh>
+Cartogram_globe make_cartogram_globe(PolygonMesh& globe, const std::vector<Spherical_region>& regions,
+                                     std::size_t vertices)
+{
+  if(vertices < 12) throw Invalid_input("a globe needs at least 12 vertices (got " + std::to_string(vertices) + ")");
+  const double f = std::sqrt((double(vertices) - 2) / 10);
+  const int subdivisions = f > 20 ? int(std::ceil(std::log2(f / 20))) : 0;
+  const int f0 = std::max(1, int(std::lround(f / double(1 << subdivisions))));
+  Cartogram_globe out;
+  const std::vector<internal::Triangle_arrays> levels =
+    internal::cartogram_globe_levels(regions, f0, subdivisions, &out.snapped_vertices);
+  internal::write_triangle_mesh(levels.back().X, levels.back().F, globe);
+  out.subdivisions = std::size_t(subdivisions);
+  if(subdivisions > 0) out.coarse_globe_vertices = internal::geodesic_sphere_vertices(f0);
+  return out;
 }
 
 } // namespace Density_equalizing_maps

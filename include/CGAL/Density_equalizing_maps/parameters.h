@@ -43,6 +43,7 @@ enum number_of_passes_t       { number_of_passes };
 enum boundary_step_t          { boundary_step };
 enum pass_callback_t          { pass_callback };
 enum torus_lattice_t          { torus_lattice };
+enum coarse_globe_vertices_t  { coarse_globe_vertices };
 } // namespace internal_np
 
 namespace parameters {
@@ -81,6 +82,7 @@ CGAL_DEM_ADD_NAMED_PARAMETER(number_of_passes_t,   number_of_passes)
 CGAL_DEM_ADD_NAMED_PARAMETER(boundary_step_t,      boundary_step)
 CGAL_DEM_ADD_NAMED_PARAMETER(torus_lattice_t,      torus_lattice)
 CGAL_DEM_ADD_NAMED_PARAMETER(pass_callback_t,      pass_callback)
+CGAL_DEM_ADD_NAMED_PARAMETER(coarse_globe_vertices_t, coarse_globe_vertices)
 #undef CGAL_DEM_ADD_NAMED_PARAMETER
 
 namespace internal {

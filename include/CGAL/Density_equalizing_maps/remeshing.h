@@ -10,7 +10,6 @@
 #include <CGAL/Density_equalizing_maps/point_transfer.h>
 #include <CGAL/Density_equalizing_maps/internal/uniform_domain_mesh.h>
 
-#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/boost/graph/helpers.h>
 
 #include <array>
@@ -40,21 +39,6 @@ inline Triangle_arrays uniform_domain_mesh(const Domain_shape& d, Eigen::Index n
   if(d.kind == Domain_kind::TORUS)
     return lattice ? uniform_torus_mesh(n, d.radii[0], d.radii[1]) : relaxed_torus_mesh(n, d.radii[0], d.radii[1]);
   return uniform_ellipsoid_mesh(n, d.kind == Domain_kind::SPHERE ? Eigen::Vector3d::Ones().eval() : d.radii);
-}
-
-/// Replaces the content of `out` by the mesh (X, F).
-template <class PolygonMesh>
-void write_triangle_mesh(const Matrix& X, const Index_matrix& F, PolygonMesh& out)
-{
-  typedef typename boost::property_traits<typename CGAL::GetVertexPointMap<PolygonMesh>::type>::value_type Point;
-  std::vector<Point> points;
-  points.reserve(static_cast<std::size_t>(X.rows()));
-  for(Eigen::Index i = 0; i < X.rows(); ++i) points.emplace_back(X(i, 0), X(i, 1), X(i, 2));
-  std::vector<std::array<std::size_t, 3> > triangles(static_cast<std::size_t>(F.rows()));
-  for(Eigen::Index k = 0; k < F.rows(); ++k)
-    triangles[k] = {{std::size_t(F(k, 0)), std::size_t(F(k, 1)), std::size_t(F(k, 2))}};
-  CGAL::clear(out);
-  CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(points, triangles, out);
 }
 
 inline void check_requested_vertices(std::size_t n)

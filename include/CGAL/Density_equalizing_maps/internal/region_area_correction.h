@@ -215,17 +215,58 @@ inline bool solve_coordinates(Spd_solver& solver, const Matrix& B3, Matrix& X3)
   return true;
 }
 
+/// The displacements of a coarser globe's vertices, carried to the vertices of
+/// the map by the prolongation P (row i: the barycentric coordinates of vertex i
+/// of the input globe in the coarse input globe). A correction step in this
+/// space solves with the stiffness of the coarse map, whose size does not grow
+/// with the fine mesh: why the correction of a fine globe started from a coarse
+/// cartogram is cheap (benchmark/RESULTS.md).
+struct Coarse_displacements
+{
+  Sparse_matrix prolongation; ///< n x n_c
+  Matrix map;                 ///< the coarse globe's map (n_c x 3), for the stiffness
+  Index_matrix faces;         ///< the coarse globe's faces
+};
+
+/// (P (x) I_3)^T G: the gradients (columns of G, 3n x c) with respect to the
+/// coarse displacements (3 n_c x c).
+inline Matrix restrict_gradients(const Sparse_matrix& P, const Sparse_matrix& G)
+{
+  const Sparse_matrix Pt = P.transpose(); // column i: the coarse weights of vertex i
+  Matrix J = Matrix::Zero(3 * P.cols(), G.cols());
+  for(Eigen::Index j = 0; j < G.outerSize(); ++j)
+    for(Sparse_matrix::InnerIterator g(G, j); g; ++g) {
+      const Eigen::Index i = g.row() / 3, d = g.row() % 3;
+      for(Sparse_matrix::InnerIterator p(Pt, i); p; ++p) J(3 * p.row() + d, j) += p.value() * g.value();
+    }
+  return J;
+}
+
+/// (P (x) I_3) d: a displacement of the coarse vertices (3 n_c x 1) carried to the vertices (3n x 1).
+inline Matrix prolong_displacement(const Sparse_matrix& P, const Matrix& dc)
+{
+  const Sparse_matrix Pt = P.transpose();
+  Matrix d = Matrix::Zero(3 * P.rows(), 1);
+  for(Eigen::Index i = 0; i < Pt.outerSize(); ++i)
+    for(Sparse_matrix::InnerIterator p(Pt, i); p; ++p)
+      for(int c = 0; c < 3; ++c) d(3 * i + c, 0) += p.value() * dc(3 * p.row() + c, 0);
+  return d;
+}
+
 /// Moves the vertices of the unit-sphere map Y (n x 3) so that the parts'
 /// areas approach `target_share` (regions 0..r-1 and the rest as part r;
 /// shares of the globe's area, <= 0 for a part without a target), weighted by
 /// `weight`. Stops when `stop(Y, iterations done)` holds (it may report
-/// progress), after `max_iterations`, or when no
-/// step lowers the residual. Y stays fold-free if it is on entry.
+/// progress), after `max_iterations`, or when no step lowers the residual.
+/// With `coarse`, the steps are displacements of the coarse globe's vertices
+/// carried to the vertices (see Coarse_displacements), else of the vertices
+/// themselves. Y stays fold-free if it is on entry.
 inline Region_area_correction_result correct_region_areas(Matrix& Y, const Index_matrix& F, const Face_parts& parts,
                                                           std::size_t regions, const Vector& target_share,
                                                           const Vector& weight, Spd_solver& solver,
                                                           const std::function<bool(const Matrix&, std::size_t)>& stop,
-                                                          std::size_t max_iterations = 200)
+                                                          std::size_t max_iterations = 200,
+                                                          const Coarse_displacements* coarse = nullptr)
 {
   Region_area_correction_result res;
   const Region_area_residuals problem(F, parts, regions, target_share, weight);
@@ -238,21 +279,37 @@ inline Region_area_correction_result correct_region_areas(Matrix& Y, const Index
   // near the centre. Such a face (corners almost on a great circle: det ~ 0
   // with a chordal area that is not small) turns over under almost any
   // motion that is not a rotation; holding its corners keeps it as it is.
+  auto pin_flat_corners = [](const Matrix& Z, const Index_matrix& G, std::vector<char>& pinned) {
+    for(Eigen::Index k = 0; k < G.rows(); ++k)
+      if(plane_offset(Z, G, k) < 0.05)
+        for(int c = 0; c < 3; ++c) pinned[std::size_t(G(k, c))] = 1;
+  };
   std::vector<char> pinned(std::size_t(Y.rows()), 0);
+  // the coarse stiffness is that of the coarse map, fixed: factored once
+  if(coarse) {
+    std::vector<char> coarse_pinned(std::size_t(coarse->map.rows()), 0);
+    pin_flat_corners(coarse->map, coarse->faces, coarse_pinned);
+    if(!solver.factor(face_scaled_stiffness(coarse->map, coarse->faces, coarse_pinned))) {
+      res.message = "the regularizing stiffness could not be factored";
+      return res;
+    }
+  }
   double mu = -1;
   bool reached = false;
   std::vector<double> history; // the residual after each iteration
   const Eigen::Index m = rho.size();
   while(res.iterations < max_iterations) {
-    for(Eigen::Index k = 0; k < F.rows(); ++k)
-      if(plane_offset(Y, F, k) < 0.05)
-        for(int c = 0; c < 3; ++c) pinned[std::size_t(F(k, c))] = 1;
-    if(!solver.factor(face_scaled_stiffness(Y, F, pinned))) { res.message = "the regularizing stiffness could not be factored"; break; }
+    pin_flat_corners(Y, F, pinned);
+    if(!coarse && !solver.factor(face_scaled_stiffness(Y, F, pinned))) {
+      res.message = "the regularizing stiffness could not be factored";
+      break;
+    }
     const Vector w = problem.active_weights(a);
     const Sparse_matrix G = problem.residual_gradients(Y, a); // 3n x m
+    const Matrix J = coarse ? restrict_gradients(coarse->prolongation, G) : Matrix(G);
     Matrix Z;
-    if(!solve_coordinates(solver, Matrix(G), Z)) { res.message = "a solve with the stiffness failed"; break; }
-    const Matrix S = Matrix(G.transpose() * Z); // G^T R^{-1} G (m x m)
+    if(!solve_coordinates(solver, J, Z)) { res.message = "a solve with the stiffness failed"; break; }
+    const Matrix S = J.transpose() * Z; // J^T R^{-1} J (m x m)
     // Q = P^T W P, P = I - 1 w^T / sum w
     const double wsum = w.sum();
     Matrix P = Matrix::Identity(m, m);
@@ -265,7 +322,8 @@ inline Region_area_correction_result correct_region_areas(Matrix& Y, const Index
     bool accepted = false;
     for(int attempt = 0; attempt < 12 && !accepted; ++attempt) {
       const Vector y = (QS + mu * Matrix::Identity(m, m)).partialPivLu().solve(Qrho);
-      Matrix d = -(Z * y); // 3n: the step of every coordinate
+      Matrix d = -(Z * y); // the step of every coordinate
+      if(coarse) d = prolong_displacement(coarse->prolongation, d);
       for(Eigen::Index i = 0; i < Y.rows(); ++i)
         if(pinned[std::size_t(i)]) d.block<3, 1>(3 * i, 0).setZero();
       for(double alpha = 1; alpha > 1. / 1024; alpha /= 2) {

@@ -67,8 +67,12 @@
 #include <CGAL/Density_equalizing_maps/internal/projections.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/boost/graph/helpers.h>
+#include <CGAL/boost/graph/properties.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -87,6 +91,39 @@ struct Triangle_arrays
   Index_matrix F;
 };
 
+/// The midpoint subdivision of a mesh of the unit sphere: each face split into
+/// four at the midpoints of its edges, the new points projected radially. The
+/// vertices keep their indices, the new ones follow; the four faces of face k
+/// are 4k..4k+3. Seen from the centre, each new face lies inside its old one
+/// (the projected midpoint of an edge is on the ray through the chord's midpoint).
+inline Triangle_arrays midpoint_subdivision_on_sphere(const Triangle_arrays& m)
+{
+  std::map<std::pair<int, int>, int> midpoint_of;
+  std::vector<Eigen::Vector3d> added;
+  const Eigen::Index n = m.X.rows();
+  auto midpoint = [&](int a, int b) {
+    const std::pair<int, int> key = std::minmax(a, b);
+    const auto it = midpoint_of.find(key);
+    if(it != midpoint_of.end()) return it->second;
+    added.push_back((m.X.row(a) + m.X.row(b)).transpose().normalized());
+    return midpoint_of[key] = int(n + Eigen::Index(added.size()) - 1);
+  };
+  Triangle_arrays s;
+  s.F.resize(4 * m.F.rows(), 3);
+  for(Eigen::Index k = 0; k < m.F.rows(); ++k) {
+    const int a = m.F(k, 0), b = m.F(k, 1), c = m.F(k, 2);
+    const int ab = midpoint(a, b), bc = midpoint(b, c), ca = midpoint(c, a);
+    s.F.row(4 * k) << a, ab, ca;
+    s.F.row(4 * k + 1) << ab, b, bc;
+    s.F.row(4 * k + 2) << ca, bc, c;
+    s.F.row(4 * k + 3) << ab, bc, ca;
+  }
+  s.X.resize(n + Eigen::Index(added.size()), 3);
+  s.X.topRows(n) = m.X;
+  for(std::size_t i = 0; i < added.size(); ++i) s.X.row(n + Eigen::Index(i)) = added[i].transpose();
+  return s;
+}
+
 /// N points of the spherical Fibonacci lattice: z uniform in (-1, 1) (equal
 /// areas per point), longitude advancing by the golden angle.
 inline Matrix fibonacci_sphere_points(Eigen::Index n)
@@ -99,6 +136,21 @@ inline Matrix fibonacci_sphere_points(Eigen::Index n)
     P.row(i) << s * std::cos(phi), s * std::sin(phi), z;
   }
   return P;
+}
+
+/// Replaces the content of `out` by the mesh (X, F).
+template <class PolygonMesh>
+void write_triangle_mesh(const Matrix& X, const Index_matrix& F, PolygonMesh& out)
+{
+  typedef typename boost::property_traits<typename CGAL::GetVertexPointMap<PolygonMesh>::type>::value_type Point;
+  std::vector<Point> points;
+  points.reserve(static_cast<std::size_t>(X.rows()));
+  for(Eigen::Index i = 0; i < X.rows(); ++i) points.emplace_back(X(i, 0), X(i, 1), X(i, 2));
+  std::vector<std::array<std::size_t, 3> > triangles(static_cast<std::size_t>(F.rows()));
+  for(Eigen::Index k = 0; k < F.rows(); ++k)
+    triangles[k] = {{std::size_t(F(k, 0)), std::size_t(F(k, 1)), std::size_t(F(k, 2))}};
+  CGAL::clear(out);
+  CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(points, triangles, out);
 }
 
 /// The icosahedral geodesic sphere of frequency f: every face of the regular
