@@ -734,11 +734,7 @@ Globe_cartogram_report globe_cartogram_on(const TriangleMesh& tm, const std::vec
     const std::size_t small_part = parts;
     if(!rep.too_small.empty()) ++parts;
     for(std::size_t r : rep.too_small) part_of[r] = small_part;
-    internal::Vector target = internal::Vector::Zero(Eigen::Index(parts) + 1);
-    for(std::size_t r = 0; r < nr; ++r)
-      target[Eigen::Index(part_of[r])] += rep.value_share[r] * (1 - rep.sea_target_share);
-    target[Eigen::Index(parts)] = rep.sea_target_share;
-    const internal::Vector weight = internal::Vector::Ones(target.size());
+    const internal::Vector weight = internal::Vector::Ones(Eigen::Index(parts) + 1);
     internal::Face_parts face_parts(pop.face_parts.size());
     for(std::size_t f = 0; f < face_parts.size(); ++f)
       for(const auto& p : pop.face_parts[f]) {
@@ -748,25 +744,55 @@ Globe_cartogram_report globe_cartogram_on(const TriangleMesh& tm, const std::vec
         else same->second += p.second;
       }
     std::unique_ptr<internal::Spd_solver> solver = internal::solver_from_parameters(np);
-    // the mesh's measure steers; once it meets its target, the polygons decide, and if
-    // they do not meet the tolerance yet the mesh's target tightens
-    double mesh_target = tolerance;
-    const internal::Region_area_correction_result c = internal::correct_region_areas(
-      Y, a.F, face_parts, parts, target, weight, *solver, [&](const internal::Matrix& Z, std::size_t iteration) {
-        measure(Z, area, sea);
-        if constexpr(!is_default_parameter<NamedParameters, internal_np::progress_callback_t>::value)
-          if(iteration > 0 && !get_parameter(np, internal_np::progress_callback)(iteration, rep.max_relative_error))
-            return true;
-        if(rep.max_relative_error > mesh_target) return false;
-        if(coarse_level) return true;
-        measure_polygons(Z);
-        if(rep.max_relative_error <= tolerance) return true;
-        mesh_target = std::max(0.5 * mesh_target, 0.01 * tolerance);
-        return false;
-      }, max_iterations, space);
+    // The mesh's measure steers; the polygons decide. Where the two differ (the
+    // radial projection of long deformed faces), the shares the mesh must reach are
+    // corrected by the ratio of the two measures, region by region, and the correction
+    // runs again from there (defect correction): a few rounds, each to 0.1 of the
+    // tolerance on the mesh. A coarse globe is only a start: its mesh measure is enough.
+    std::vector<double> aim(nr, 1.); // the mesh share to reach = value share x aim (normalized)
+    double sea_aim = 1;
+    std::size_t left = max_iterations;
+    for(int round = 0;; ++round) {
+      internal::Vector target = internal::Vector::Zero(Eigen::Index(parts) + 1);
+      for(std::size_t r = 0; r < nr; ++r)
+        target[Eigen::Index(part_of[r])] += rep.value_share[r] * aim[r] * (1 - rep.sea_target_share);
+      target[Eigen::Index(parts)] = rep.sea_target_share * sea_aim;
+      double aimed_land = 0;
+      for(std::size_t r = 0; r < nr; ++r) aimed_land += rep.value_share[r] * aim[r];
+      auto off_aim = [&]() { // the largest relative error of the mesh shares to the aimed ones
+        double e = 0;
+        for(std::size_t r = 0; r < nr; ++r)
+          if(!small[r] && rep.value_share[r] > 0)
+            e = std::max(e, std::abs(rep.area_share[r] / (rep.value_share[r] * aim[r] / aimed_land) - 1));
+        return e;
+      };
+      const internal::Region_area_correction_result c = internal::correct_region_areas(
+        Y, a.F, face_parts, parts, target, weight, *solver, [&](const internal::Matrix& Z, std::size_t iteration) {
+          measure(Z, area, sea);
+          if constexpr(!is_default_parameter<NamedParameters, internal_np::progress_callback_t>::value)
+            if(iteration > 0 && !get_parameter(np, internal_np::progress_callback)(iteration, rep.max_relative_error))
+              return true;
+          return off_aim() <= (coarse_level ? 1. : 0.1) * tolerance;
+        }, left, space);
+      rep.correction_iterations += c.iterations;
+      rep.correction_message = c.message;
+      left -= std::min(left, c.iterations);
+      if(coarse_level || !c.message.empty()) break;
+      measure(Y, area, sea);
+      const std::vector<double> mesh_share = rep.area_share;
+      const double mesh_sea = rep.sea_area_share;
+      measure_polygons(Y);
+      if(rep.max_relative_error <= tolerance) break;
+      if(round == 5 || left == 0) {
+        rep.correction_message = "the areas of the output polygons differ from the mesh's measure by more than the "
+                                 "tolerance after 6 rounds of correction";
+        break;
+      }
+      for(std::size_t r = 0; r < nr; ++r)
+        if(rep.area_share[r] > 0) aim[r] *= mesh_share[r] / rep.area_share[r];
+      if(rep.sea_area_share > 0) sea_aim *= mesh_sea / rep.sea_area_share;
+    }
     measure(Y, area, sea);
-    rep.correction_iterations += c.iterations;
-    rep.correction_message = c.message;
   };
 
   // The start: the coarse globe's map carried to this globe, if it turns no
