@@ -6,14 +6,15 @@
 // the antimeridian and one around the south pole, with values 6 : 3 : 1; the
 // rest of the globe is sea with the mean land density. After the map, each
 // region's share of the land area is its share of the values, and the region
-// borders are carried through the map. (`dem cartogram` does the same from
-// GeoJSON and CSV files.)
+// borders are carried through the map. The globe is built for the regions
+// (make_cartogram_globe): a coarse geodesic sphere snapped to their borders,
+// subdivided, so that the cartogram can run coarse to fine. (`dem cartogram`
+// does the same from GeoJSON and CSV files.)
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
 
 #include <CGAL/Density_equalizing_maps/globe_cartogram.h>
-#include <CGAL/Density_equalizing_maps/remeshing.h>
 
 #include <iostream>
 #include <vector>
@@ -24,9 +25,6 @@ namespace DEM = CGAL::Density_equalizing_maps;
 
 int main()
 {
-  Mesh globe;
-  DEM::uniform_domain_mesh(DEM::Unit_sphere_domain(), 5000, globe);
-
   // rings of (longitude, latitude), great-circle edges; each encloses its smaller side
   auto region = [](const char* id, std::vector<DEM::Lon_lat> ring) {
     DEM::Spherical_region r;
@@ -42,15 +40,20 @@ int main()
     region("Antarctica", south)};                                        // around the south pole
   const std::vector<double> values = {6, 3, 1};
 
-  // vertices next to a border onto it: the faces along it hold no thin slivers of a region
-  DEM::snap_globe_to_region_borders(globe, regions);
+  // about 20,000 vertices: two midpoint subdivisions of a coarse globe whose vertices
+  // next to a border are moved onto it (no face holds a thin sliver of a region)
+  Mesh globe;
+  const DEM::Cartogram_globe built = DEM::make_cartogram_globe(globe, regions, 20000);
 
+  // the passes run on the coarse globe, the map is carried up and corrected on each globe
   auto cartogram = globe.add_property_map<Mesh::Vertex_index, K::Point_3>("v:cartogram").first;
-  const DEM::Globe_cartogram_report r = DEM::globe_cartogram(globe, regions, values, cartogram);
+  const DEM::Globe_cartogram_report r = DEM::globe_cartogram(
+    globe, regions, values, cartogram, DEM::parameters::coarse_globe_vertices(built.coarse_globe_vertices));
   for(std::size_t k = 0; k < regions.size(); ++k)
     std::cout << regions[k].id << ": value share " << r.value_share[k] << ", land area share " << r.area_share[k]
               << " before the map " << r.populations.region_area[k] / r.populations.land_area << "\n";
-  std::cout << r.passes << " passes, largest relative area error " << r.max_relative_error << ", "
+  std::cout << globe.number_of_vertices() << " vertices from a coarse globe of " << built.coarse_globe_vertices
+            << ", " << r.passes << " passes on it, largest relative area error " << r.max_relative_error << ", "
             << r.fold_overs << " fold-overs\n";
 
   const std::vector<DEM::Spherical_region> moved = DEM::push_forward_region_boundaries(globe, cartogram, regions);

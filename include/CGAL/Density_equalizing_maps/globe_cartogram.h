@@ -1028,6 +1028,8 @@ struct Cartogram_globe
 /// \param globe receives the globe (its content is replaced); vertices in the order of construction
 /// \param regions the regions whose borders the coarse globe is snapped to
 /// \param vertices about how many vertices the globe should have (at least 12)
+/// \returns the coarse globe's vertex count (for `coarse_globe_vertices`), the subdivisions
+///   and the snapped vertices
 /// \throws Invalid_input on an invalid ring or fewer than 12 vertices asked
 template <class PolygonMesh>
 Cartogram_globe make_cartogram_globe(PolygonMesh& globe, const std::vector<Spherical_region>& regions,
