@@ -33,6 +33,9 @@
 // factors R on the current map and solves it for the gradients of the
 // regions (three coordinates each). A step is halved until no face turns
 // over (exact orientation about the centre) and the residual decreases.
+// On a globe subdivided from a coarser one, the steps can be displacements of
+// the coarse globe's vertices instead (Coarse_displacements): d = P d_c, the
+// gradients restricted by P^T, and R the coarse map's stiffness, factored once.
 //
 // It does not reach every target: a region shrunk by orders of magnitude
 // leaves the faces around it stretched over large parts of the globe, the
