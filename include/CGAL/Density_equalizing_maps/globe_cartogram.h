@@ -134,20 +134,13 @@ inline std::vector<double> flat_face_areas(const Matrix& X, const Index_matrix& 
   return A;
 }
 
-/// Area of each region and of the sea for the face areas A.
+/// Area of each region and of the sea for the face areas A (`part_areas()`, the sea last).
 inline void region_areas(const std::vector<std::vector<std::pair<std::size_t, double> > >& parts,
                          const std::vector<double>& A, std::size_t regions, std::vector<double>& area, double& sea)
 {
-  area.assign(regions, 0.);
-  sea = 0;
-  for(std::size_t f = 0; f < parts.size(); ++f) {
-    double covered = 0;
-    for(const auto& p : parts[f]) {
-      area[p.first] += p.second * A[f];
-      covered += p.second;
-    }
-    sea += std::max(0., 1 - covered) * A[f];
-  }
+  const Vector a = part_areas(parts, Eigen::Map<const Vector>(A.data(), Eigen::Index(A.size())), regions);
+  area.assign(a.data(), a.data() + regions);
+  sea = a[Eigen::Index(regions)];
 }
 
 /// Face populations for per-region densities (and the sea's), with a floor
