@@ -256,7 +256,7 @@ inline void lift_south_chart(const Matrix& w, const South_chart& chart, Flash_re
 /// both steps (south_solve_on_leading_block()) with the package's default
 /// solver. The chosen cap is kept when its map has no inverted face;
 /// otherwise the reference's cap is used, with a second factorization. The
-/// mean |mu| moves by -1 % to +3.4 % against the reference's cap on the
+/// mean |mu| moves by -0.6 % to +4 % against the reference's cap on the
 /// shared and benchmark meshes (benchmark/RESULTS.md, "One factorization for
 /// FLASH"). With another solver
 /// the south system is factored on its own, with the same choice of cap, so
