@@ -238,6 +238,21 @@ inline void lift_south_chart(const Matrix& w, const South_chart& chart, Flash_re
   }
 }
 
+/// Which south cap FLASH pins (flash_spherical_map()).
+enum class South_cap_rule
+{
+  /// chosen before the north step, so that one factorization serves both
+  /// steps (the direct maps: spherical conformal map, FECM)
+  chosen_first,
+  /// the reference's: the lowest 10 % after the north step, a second
+  /// factorization. The density-equalizing flows and registration start
+  /// from this map: their runs, many of them shaped by fold repairs, depend
+  /// on the start in detail (LSDEM on a generated sphere lost the fall of its
+  /// landmark error with the landmark weight from the other start), and
+  /// their cost is the iterations, not this map.
+  reference
+};
+
 /// FLASH (ALGORITHMS.md section 3): the harmonic map of the mesh punctured at
 /// its most regular face onto the plane, balanced and lifted to the sphere
 /// (north step); then, in the south chart where the puncture sits at the
@@ -264,7 +279,8 @@ inline void lift_south_chart(const Matrix& w, const South_chart& chart, Flash_re
 ///
 /// Falls back to a Tutte embedding when the cotangent harmonic map fails.
 inline Flash_result flash_spherical_map(const Matrix& X, const Index_matrix& F, const Spd_solver& prototype,
-                                        const Stage_notifier& stage = Stage_notifier())
+                                        const Stage_notifier& stage = Stage_notifier(),
+                                        South_cap_rule rule = South_cap_rule::chosen_first)
 {
   const Eigen::Index n = X.rows();
   Flash_result res;
@@ -276,14 +292,15 @@ inline Flash_result flash_spherical_map(const Matrix& X, const Index_matrix& F, 
                                   Complex(a.dot(b), a.cross(b).norm()) / a.squaredNorm()};
   const Face_block_assembler assembler(F, n);
   std::unique_ptr<Spd_solver> solver = clone_with_fast_ordering(prototype);
+  const bool cap_first = rule == South_cap_rule::chosen_first;
   std::unique_ptr<Factorization_with_trailing_set> one_factorization =
-    factorization_with_trailing_set_like(prototype);
+    cap_first ? factorization_with_trailing_set_like(prototype) : nullptr;
   begin_stage(stage, "harmonic map (cotangent Laplacian, sparse Cholesky)");
   // the m x 9 blocks die before the factorization, the memory peak
   Sparse_matrix L = assembler.assemble(cotangent_stiffness_blocks(X, F));
   const Eigen::Index cap_size = std::max<Eigen::Index>(static_cast<Eigen::Index>(std::llround(n / 10.)), 3);
-  const South_cap cap = farthest_vertices_from_face(X, L, F, t, cap_size);
-  std::vector<char> cap_and_puncture = cap.member;
+  const South_cap cap = cap_first ? farthest_vertices_from_face(X, L, F, t, cap_size) : South_cap();
+  std::vector<char> cap_and_puncture = cap_first ? cap.member : std::vector<char>(static_cast<std::size_t>(n), 0);
   for(int c = 0; c < 3; ++c) {
     if(cap_and_puncture[F(t, c)]) one_factorization.reset(); // a tiny mesh: the cap reaches the puncture
     cap_and_puncture[F(t, c)] = 1;
@@ -353,7 +370,7 @@ inline Flash_result flash_spherical_map(const Matrix& X, const Index_matrix& F, 
   begin_stage(stage, "south-chart LBS correction");
   bool solved = false;
   std::size_t inverted = 0; // exact count on the map of the south step
-  {
+  if(cap_first) {
     const South_chart chart = south_chart_of(S, F, cap, turn_to_south_pole(S, F, cap));
     Matrix w;
     solved = chart.P.allFinite() &&
