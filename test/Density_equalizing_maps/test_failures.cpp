@@ -297,42 +297,6 @@ void solver_clones_keep_the_settings()
     user->set_ordering_effort(I::Ordering_effort::fast);
     check(user->factor(A) && cholmod_of(*user).nmethods == 2, "fast ordering keeps a user's choice of methods");
   }
-  // The diffusion solver's lagged factorization: simplicial LDL^T for small
-  // systems, the supernodal default from supernodal_diffusion_from unknowns
-  // on (a simplicial factorization of 1M faces costs ~30 s); a clone keeps
-  // the rule, and both solve.
-  {
-    typedef I::Eigen_traits_spd_solver<I::Simplicial_ldlt_traits> Simplicial;
-    typedef I::Eigen_traits_spd_solver<DEM::Default_sparse_solver_traits> Supernodal;
-    auto path = [](Eigen::Index n) {
-      I::Sparse_matrix P(n, n);
-      std::vector<Eigen::Triplet<double> > t;
-      for(Eigen::Index i = 0; i < n; ++i) {
-        t.emplace_back(int(i), int(i), 2.5);
-        if(i > 0) { t.emplace_back(int(i), int(i - 1), -1.); t.emplace_back(int(i - 1), int(i), -1.); }
-      }
-      P.setFromTriplets(t.begin(), t.end());
-      return P;
-    };
-    const std::unique_ptr<I::Spd_solver> lagged = I::make_lagged_diffusion_factorization();
-    const std::unique_ptr<I::Spd_solver> lagged_copy = lagged->clone();
-    for(const I::Spd_solver* prototype : {lagged.get(), lagged_copy.get()}) {
-      std::unique_ptr<I::Spd_solver> s = prototype->clone();
-      auto& dispatch = dynamic_cast<I::Size_dispatched_spd_solver&>(*s);
-      for(Eigen::Index n : {Eigen::Index(30), I::supernodal_diffusion_from - 1, I::supernodal_diffusion_from}) {
-        const I::Sparse_matrix P = path(n);
-        const I::Matrix rhs = I::Matrix::Ones(n, 2);
-        I::Matrix sol;
-        check(s->factor(P) && s->solve(rhs, sol) && (P * sol - rhs).norm() <= 1e-12 * rhs.norm(),
-              "lagged diffusion factorization solves " + std::to_string(n) + " unknowns");
-        const bool supernodal = dynamic_cast<const Supernodal*>(dispatch.active()) != nullptr;
-        const bool simplicial = dynamic_cast<const Simplicial*>(dispatch.active()) != nullptr;
-        check(n < I::supernodal_diffusion_from ? simplicial : supernodal,
-              "lagged diffusion factorization of " + std::to_string(n) + " unknowns is " +
-                (n < I::supernodal_diffusion_from ? "simplicial" : "supernodal"));
-      }
-    }
-  }
 #endif
 
   // End to end: a configured CG solver is usable by a method that clones it.
@@ -342,75 +306,6 @@ void solver_clones_keep_the_settings()
   good.solver().setTolerance(1e-12);
   const DEM::Map_report r = DEM::spherical_conformal_map(m, out, PM::sparse_linear_solver(good));
   check(r.fold_overs == 0, "spherical conformal map with a configured CG solver: 0 fold-overs");
-}
-
-// The factorization whose ordering puts a trailing set last (the spherical
-// conformal map's one factorization for two systems): it solves the whole
-// system, and the principal subsystem on the other unknowns with the same
-// factor, as a separate factorization of that subsystem does. Only the
-// package's default solver has it; a user's solver gets none (the map then
-// factors twice).
-void factorization_with_trailing_set_solves_both_systems()
-{
-  const int side = 30, n = side * side; // grid Laplacian plus a small mass: SPD
-  std::vector<Eigen::Triplet<double> > t;
-  for(int i = 0; i < side; ++i)
-    for(int j = 0; j < side; ++j) {
-      const int v = i * side + j;
-      t.emplace_back(v, v, 0.01);
-      for(int d = 0; d < 2; ++d) {
-        const int ni = i + (d == 0), nj = j + (d == 1);
-        if(ni >= side || nj >= side) continue;
-        const int u = ni * side + nj;
-        const double w = 1. + 0.1 * ((v * 7 + u) % 5);
-        t.emplace_back(v, v, w); t.emplace_back(u, u, w); t.emplace_back(v, u, -w); t.emplace_back(u, v, -w);
-      }
-    }
-  I::Sparse_matrix A(n, n);
-  A.setFromTriplets(t.begin(), t.end());
-  A.makeCompressed();
-  std::vector<char> trailing(n, 0);
-  for(int v = 0; v < n; ++v) trailing[v] = (v % 11 == 3) || (v / side >= side - 4); // scattered and a band
-  std::vector<int> leading;
-  for(int v = 0; v < n; ++v) if(!trailing[v]) leading.push_back(v);
-  const I::Matrix B = I::Matrix::Random(n, 3);
-
-#ifdef CGAL_DEM_USE_CHOLMOD
-  std::unique_ptr<I::Factorization_with_trailing_set> f =
-    I::factorization_with_trailing_set_like(*I::make_default_spd_solver());
-  check(f != nullptr, "the default solver has a factorization with a trailing set");
-  if(!f) return;
-  check(f->factor(A, trailing), "factorization with a trailing set succeeds");
-  I::Matrix X, XL;
-  check(f->solve(B, X) && (A * X - B).norm() <= 1e-10 * B.norm(), "it solves the whole system");
-  check(f->solve_leading(B, XL), "it solves the leading subsystem");
-  // the subsystem A_RR x_R = b_R factored on its own
-  I::Sparse_matrix ARR(I::Sparse_matrix::Index(leading.size()), I::Sparse_matrix::Index(leading.size()));
-  {
-    std::vector<int> position(n, -1);
-    for(std::size_t k = 0; k < leading.size(); ++k) position[leading[k]] = int(k);
-    std::vector<Eigen::Triplet<double> > r;
-    for(int c = 0; c < n; ++c)
-      for(I::Sparse_matrix::InnerIterator it(A, c); it; ++it)
-        if(position[it.row()] >= 0 && position[c] >= 0) r.emplace_back(position[it.row()], position[c], it.value());
-    ARR.setFromTriplets(r.begin(), r.end());
-  }
-  Eigen::SimplicialLDLT<I::Sparse_matrix> ldlt(ARR);
-  I::Matrix BR(I::Matrix::Index(leading.size()), 3);
-  for(std::size_t k = 0; k < leading.size(); ++k) BR.row(I::Matrix::Index(k)) = B.row(leading[k]);
-  const I::Matrix XR = ldlt.solve(BR);
-  double error = 0, trailing_part = 0;
-  for(std::size_t k = 0; k < leading.size(); ++k)
-    error = std::max(error, (XL.row(leading[k]) - XR.row(I::Matrix::Index(k))).norm());
-  for(int v = 0; v < n; ++v) if(trailing[v]) trailing_part = std::max(trailing_part, XL.row(v).norm());
-  check(error <= 1e-9 * XR.norm(), "the leading solve is the subsystem's solution (" + std::to_string(error) + ")");
-  check(trailing_part == 0, "the leading solve is 0 on the trailing set");
-  check(!f->factor(A, std::vector<char>(3, 0)), "a trailing set of the wrong size is refused");
-  check(!f->solve_leading(B, XL), "nothing is solved after a refused factorization");
-#endif
-  typedef CGAL::Eigen_solver_traits<Eigen::SimplicialLDLT<CGAL::Eigen_sparse_matrix<double>::EigenType> > Ldlt;
-  check(I::factorization_with_trailing_set_like(*I::make_spd_solver(Ldlt())) == nullptr,
-        "a user's solver has no factorization with a trailing set");
 }
 
 void mobius_validates_its_input()
@@ -451,7 +346,6 @@ int main()
   duplicate_landmarks_are_refused();
   radii_out_of_range_are_refused();
   solver_clones_keep_the_settings();
-  factorization_with_trailing_set_solves_both_systems();
   mobius_validates_its_input();
   return finish("test_failures");
 }

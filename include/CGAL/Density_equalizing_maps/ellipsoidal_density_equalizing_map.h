@@ -66,7 +66,7 @@ Matrix initial_ellipsoidal_map(const TriangleMesh& tm, const Mesh_arrays<Triangl
       }
     }
     auto density_error = [&](const Matrix& y) { return vertex_density_spread(population, y, a.F); };
-    const Flash_result flash = flash_spherical_map(a.X, a.F, solver, Stage_notifier(), South_cap_rule::reference);
+    const Flash_result flash = flash_spherical_map(a.X, a.F, solver);
     bool by_population = false;
     const Matrix scaled_sphere =
       Ellipsoid_domain::from_unit_sphere(population_mobius_start(a.X, a.F, flash.S, population, by_population), radii);

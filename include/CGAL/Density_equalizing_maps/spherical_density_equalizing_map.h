@@ -48,7 +48,7 @@ Matrix initial_spherical_map(const Mesh_arrays<TriangleMesh>& a, const NamedPara
       throw Invalid_input("the initial map is not bijective: " + std::to_string(folds) + " fold-overs (exact count)");
   } else {
     const Stage_notifier stage = stage_notifier_from_parameters(np);
-    const Flash_result flash = flash_spherical_map(a.X, a.F, solver, stage, South_cap_rule::reference);
+    const Flash_result flash = flash_spherical_map(a.X, a.F, solver, stage);
     report.used_tutte_fallback = flash.tutte;
     report.add_fallback(flash.fallback.empty() ? "" : "initial map: " + flash.fallback);
     report.repairs += flash.repairs;

@@ -205,7 +205,7 @@ inline Matrix sampled_mobius_area_correction(const Matrix& X, const Index_matrix
 inline Matrix registration_start_on_sphere(const Matrix& X, const Index_matrix& F, const Spd_solver& solver,
                                            const char* which)
 {
-  const Flash_result flash = flash_spherical_map(X, F, solver, Stage_notifier(), South_cap_rule::reference);
+  const Flash_result flash = flash_spherical_map(X, F, solver);
   const Matrix S = sampled_mobius_area_correction(X, F, flash.S);
   const std::size_t folds = count_inverted_faces_about_center(S, F);
   if(folds > 0)
