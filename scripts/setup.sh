@@ -21,6 +21,7 @@ JOBS="${DEM_JOBS:-$(nproc 2>/dev/null || echo 2)}"
 PACKAGES=(libcgal-dev libeigen3-dev libboost-dev libgmp-dev libmpfr-dev
           libsuitesparse-dev libopenblas0-serial cmake g++ ccache
           zlib1g-dev   # zlib: GIfTI arrays in the GZipBase64Binary encoding
+          libtbb-dev   # oneTBB: the parallel loops (concurrency_tag, dem --threads)
           nlohmann-json3-dev librsvg2-bin)  # dem cartogram: GeoJSON parsing, PNG pictures
 # Third-party readers of the test test_formats_third_party (skipped without
 # them): installed too when DEM_FORMAT_CHECKS=1 (CI sets it).

@@ -232,7 +232,8 @@ int cartogram_command(const std::vector<std::string>& args)
       DEM::parameters::number_of_passes(o.passes), DEM::parameters::pass_callback(pass_report),
       DEM::parameters::progress_callback(progress), DEM::parameters::time_step(o.time_step.value_or(0.1)),
       DEM::parameters::stopping_tolerance(o.tolerance.value_or(1e-3)),
-      DEM::parameters::number_of_iterations((unsigned int)(o.max_iterations.value_or(200))));
+      DEM::parameters::number_of_iterations((unsigned int)(o.max_iterations.value_or(200))),
+      DEM::parameters::concurrency_tag(CGAL::Parallel_if_available_tag()));
     if(o.sea == "mean") rep = DEM::globe_cartogram(globe, geo.regions, values, out_map, np);
     else {
       double d = 0;

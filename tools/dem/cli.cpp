@@ -11,6 +11,7 @@
 #include <sys/resource.h> // getrusage
 
 #include <cmath>
+#include <iostream>
 #include <sstream>
 
 namespace dem_cli {
@@ -63,6 +64,8 @@ std::string usage_text()
     "                             face population = face area x mean of its corners' values\n"
     "  --output-scale S           multiply the written positions by S (FreeSurfer spheres: 100)\n"
     "  --quiet                    no progress messages on stderr\n"
+    "  --threads N                threads of the parallel loops, for every subcommand (default: every core;\n"
+    "                             1: single-threaded); the maps are the same to the last bit on any number\n"
     "  --repair                   repair a polygon soup first (merge duplicated vertices, remove\n"
     "                             duplicated and degenerate faces, orient consistently, keep the\n"
     "                             largest component) and print what changed; off by default\n"
@@ -159,6 +162,24 @@ inline bool to_number(const std::string& s, double& v)
 }
 
 } // namespace internal
+
+bool take_threads_option(std::vector<std::string>& args, unsigned& threads)
+{
+  for(std::size_t i = 0; i < args.size(); ++i) {
+    if(args[i] != "--threads") continue;
+    std::size_t n = 0;
+    if(i + 1 >= args.size() || !CGAL::Density_equalizing_maps::IO::internal::parse_index(args[i + 1], n) || n == 0 ||
+       n > 4096) {
+      std::cerr << "dem: option --threads needs a number of threads from 1 to 4096"
+                << (i + 1 < args.size() ? ", not \"" + args[i + 1] + "\"" : std::string()) << std::endl;
+      return false;
+    }
+    threads = unsigned(n);
+    args.erase(args.begin() + std::ptrdiff_t(i), args.begin() + std::ptrdiff_t(i) + 2);
+    --i;
+  }
+  return true;
+}
 
 Parse_status parse_command_line(const std::vector<std::string>& args, Options& opt, std::string& error)
 {

@@ -105,6 +105,11 @@ std::string version_text();
 /// `dem --help`.
 std::string usage_text();
 
+/// Takes `--threads N` out of the arguments of any subcommand (N from 1 to
+/// 4096) into `threads`; 0 when absent. Says what is wrong on stderr and
+/// returns false for a missing or bad number (exit status 2).
+bool take_threads_option(std::vector<std::string>& args, unsigned& threads);
+
 enum class Parse_status { OK, HELP, VERSION, ERROR };
 
 /// Parses the arguments of a map subcommand (`METHOD INPUT [options]`, without

@@ -27,10 +27,10 @@ Run run_ellipsoidal_conformal(Problem& pb, const Options& opt)
   if(opt.radii)
     run.report = DEM::ellipsoidal_conformal_map(
         pb.mesh, out, NP::combine(NP::ellipsoid_radii(*opt.radii), NP::optimize_radii(opt.optimize_radii),
-                                NP::stage_callback(stage_callback())));
+                                tool_parameters()));
   else
     run.report = DEM::ellipsoidal_conformal_map(
-        pb.mesh, out, NP::combine(NP::optimize_radii(opt.optimize_radii), NP::stage_callback(stage_callback())));
+        pb.mesh, out, NP::combine(NP::optimize_radii(opt.optimize_radii), tool_parameters()));
   watch.stop(run.seconds, run.cpu_seconds);
   run.Y = to_matrix(pb.mesh, out);
   return run;
@@ -69,7 +69,7 @@ Run run_ellipsoidal_quasiconformal(Problem& pb, const Options& opt)
   run.report = DEM::ellipsoidal_quasiconformal_map(
       pb.mesh, pb.landmarks, out,
       NP::combine(NP::ellipsoid_radii(radii), NP::landmark_weight(opt.lambda.value_or(1.)),
-                  NP::stage_callback(stage_callback())));
+                  tool_parameters()));
   watch.stop(run.seconds, run.cpu_seconds);
   run.Y = to_matrix(pb.mesh, out);
   return run;
@@ -87,11 +87,11 @@ Run run_edem(Problem& pb, const Options& opt, bool quasiconformal)
   const Stopwatch watch;
   const DEM::Map_report start = DEM::ellipsoidal_density_equalizing_initial_map(
       pb.mesh, init, NP::combine(NP::ellipsoid_radii(radii), NP::face_population_map(pb.population_map),
-                                 NP::stage_callback(stage_callback())));
+                                 tool_parameters()));
   if(!opt.quiet) std::cerr << "dem: " << start.message << std::endl;
   const auto common = NP::combine(NP::ellipsoid_radii(radii), NP::initial_map(init),
                                   NP::face_population_map(pb.population_map),
-                                  NP::progress_callback(progress.callback()), NP::stage_callback(stage_callback()),
+                                  NP::progress_callback(progress.callback()), tool_parameters(),
                                   NP::time_step(opt.time_step.value_or(method_defaults(opt.method).time_step)));
   if(!quasiconformal)
     run.report = DEM::ellipsoidal_density_equalizing_map(

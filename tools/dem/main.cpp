@@ -12,7 +12,12 @@
 #include "cli.h"
 #include "commands.h"
 
+#ifdef CGAL_LINKED_WITH_TBB
+#include <tbb/global_control.h>
+#endif
+
 #include <iostream>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -34,8 +39,17 @@ const std::vector<Application>& applications()
 int main(int argc, char** argv)
 {
   using namespace dem_cli;
-  const std::vector<std::string> args(argv + 1, argv + argc);
+  std::vector<std::string> args(argv + 1, argv + argc);
   if(args.empty()) { std::cerr << usage_text(); return 2; }
+  // --threads N, for every subcommand: the threads of the parallel loops (the
+  // maps are the same on any number); by default every core.
+  unsigned threads = 0;
+  if(!take_threads_option(args, threads)) return 2;
+#ifdef CGAL_LINKED_WITH_TBB
+  std::unique_ptr<tbb::global_control> thread_limit;
+  if(threads > 0)
+    thread_limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, threads);
+#endif
   for(const Application& a : applications())
     if(args[0] == a.name) return a.run(std::vector<std::string>(args.begin() + 1, args.end()));
   return map_command(args);

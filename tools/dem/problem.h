@@ -13,6 +13,7 @@
 #include "dem_stages.h"
 
 #include <CGAL/Density_equalizing_maps/Map_report.h>
+#include <CGAL/Density_equalizing_maps/parameters.h>
 #include <CGAL/Density_equalizing_maps/internal/mesh_arrays.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -73,6 +74,15 @@ Stage_progress* stage_progress();
 /// The library's stage names (named parameter `stage_callback`), shown by the
 /// stage reporter as parts of the running stage.
 std::function<void(const std::string&)> stage_callback();
+
+/// The named parameters every map run by dem takes: the stage names for the
+/// progress display, and parallel loops (their number of threads is set once
+/// for the process, by --threads in main.cpp).
+inline auto tool_parameters()
+{
+  return DEM::parameters::combine(DEM::parameters::stage_callback(stage_callback()),
+                                  DEM::parameters::concurrency_tag(CGAL::Parallel_if_available_tag()));
+}
 
 /// Prints iterations on stderr once a run has lasted more than a second
 /// (through the stage reporter when one is set).

@@ -170,7 +170,8 @@ int register_command(const std::vector<std::string>& args)
         DEM::parameters::landmark_weight(sphere ? opt.gamma.value_or(20.) : opt.lambda.value_or(20.)),
         DEM::parameters::time_step(opt.time_step.value_or(d.time_step)),
         DEM::parameters::stopping_tolerance(opt.tolerance.value_or(d.tolerance)),
-        CGAL::parameters::number_of_iterations(unsigned(opt.max_iterations.value_or(d.max_iterations)))));
+        CGAL::parameters::number_of_iterations(unsigned(opt.max_iterations.value_or(d.max_iterations))),
+        DEM::parameters::concurrency_tag(CGAL::Parallel_if_available_tag())));
     watch.stop(seconds, cpu);
     registered = to_matrix(src.mesh, out);
   } catch(const DEM::Invalid_input& e) {

@@ -172,7 +172,8 @@ int remesh_command(const std::vector<std::string>& args)
       const Stopwatch watch;
       remesh = remesh_on_domain(opt, run, [&](const auto& domain) {
         return DEM::remesh_through_map(pb.mesh, mapped, domain, vertices, remeshed,
-                                       DEM::parameters::torus_lattice(torus_lattice));
+                                       DEM::parameters::combine(DEM::parameters::torus_lattice(torus_lattice),
+                                                                DEM::parameters::concurrency_tag(CGAL::Parallel_if_available_tag())));
       });
       watch.stop(remesh_seconds, remesh_cpu);
     }

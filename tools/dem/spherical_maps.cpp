@@ -21,7 +21,7 @@ Run run_spherical_conformal(Problem& pb, const Options& opt)
   Point_map out = fresh_point_map(pb.mesh, "v:dem_sphere");
   const Stopwatch watch;
   run.report = DEM::spherical_conformal_map(
-      pb.mesh, out, NP::combine(NP::mobius_area_correction(opt.mobius), NP::stage_callback(stage_callback())));
+      pb.mesh, out, NP::combine(NP::mobius_area_correction(opt.mobius), tool_parameters()));
   watch.stop(run.seconds, run.cpu_seconds);
   run.Y = to_matrix(pb.mesh, out);
   return run;
@@ -42,12 +42,12 @@ Run run_sdem(Problem& pb, const Options& opt, bool landmark_aligned)
   start.start = "conformal";
   if(landmark_aligned)
     DEM::spherical_conformal_map(pb.mesh, init,
-                                 NP::combine(NP::mobius_area_correction(true), NP::stage_callback(stage_callback())));
+                                 NP::combine(NP::mobius_area_correction(true), tool_parameters()));
   else // zero iterations: SDEM's own start
     start = DEM::spherical_density_equalizing_map(
-      pb.mesh, init, NP::combine(NP::face_population_map(pb.population_map), NP::stage_callback(stage_callback()),
+      pb.mesh, init, NP::combine(NP::face_population_map(pb.population_map), tool_parameters(),
                                  CGAL::parameters::number_of_iterations(0)));
-  const auto common = NP::combine(NP::initial_map(init), NP::progress_callback(progress.callback()), NP::stage_callback(stage_callback()),
+  const auto common = NP::combine(NP::initial_map(init), NP::progress_callback(progress.callback()), tool_parameters(),
                                   NP::face_population_map(pb.population_map));
   if(!landmark_aligned) {
     run.report = DEM::spherical_density_equalizing_map(

@@ -29,7 +29,7 @@ Run run_toroidal(Problem& pb, const Options& opt, bool parameterization)
   const auto common = NP::combine(
       NP::flat_torus_coordinates(flat), NP::flat_torus_offsets(offsets),
       NP::torus_radii(*opt.torus), NP::face_population_map(pb.population_map),
-      NP::progress_callback(progress.callback()), NP::stage_callback(stage_callback()),
+      NP::progress_callback(progress.callback()), tool_parameters(),
       NP::time_step(opt.time_step.value_or(method_defaults(opt.method).time_step)),
       NP::stopping_tolerance(opt.tolerance.value_or(method_defaults(opt.method).tolerance)),
       CGAL::parameters::number_of_iterations(opt.max_iterations.value_or(method_defaults(opt.method).max_iterations)));

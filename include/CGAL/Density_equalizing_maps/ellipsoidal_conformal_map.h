@@ -9,6 +9,7 @@
 #include <CGAL/Density_equalizing_maps/parameters.h>
 #include <CGAL/Density_equalizing_maps/internal/ellipsoidal_conformal.h>
 #include <CGAL/Density_equalizing_maps/internal/input.h>
+#include <CGAL/Density_equalizing_maps/internal/parallel.h>
 
 #include <array>
 #include <set>
@@ -216,6 +217,12 @@ std::array<double, 3> bounding_box_ellipsoid_radii(const TriangleMesh& tm,
 ///     \cgalParamDescription{a model of `SparseLinearAlgebraWithFactorTraits_d` for the SPD systems}
 ///     \cgalParamDefault{`Default_sparse_solver_traits`}
 ///   \cgalParamNEnd
+///   \cgalParamNBegin{concurrency_tag}
+///     \cgalParamDescription{`CGAL::Parallel_tag` or `CGAL::Parallel_if_available_tag`: the loops over faces and
+///       vertices run on TBB's threads (when built with TBB); the result is the same to the last bit}
+///     \cgalParamType{`CGAL::Sequential_tag`, `CGAL::Parallel_tag` or `CGAL::Parallel_if_available_tag`}
+///     \cgalParamDefault{`CGAL::Sequential_tag` (called by another map of the package: that map's)}
+///   \cgalParamNEnd
 /// \cgalNamedParamsEnd
 ///
 /// \pre `tm` is a closed, connected, manifold triangle mesh of genus 0 without degenerate faces
@@ -235,6 +242,7 @@ template <class TriangleMesh, class VertexPointOutMap,
 Map_report ellipsoidal_conformal_map(const TriangleMesh& tm, VertexPointOutMap ellipsoid_map,
                                      const NamedParameters& np = parameters::default_values())
 {
+  const internal::Concurrency_scope concurrency = internal::concurrency_scope_from_parameters(np);
   using CGAL::parameters::choose_parameter;
   using CGAL::parameters::get_parameter;
   const auto a = internal::closed_surface_arrays(tm, np, 2);
@@ -348,6 +356,12 @@ std::array<double, 3> optimal_ellipsoid_radii(const TriangleMesh& tm,
 ///     \cgalParamType{double}
 ///     \cgalParamDefault{1}
 ///   \cgalParamNEnd
+///   \cgalParamNBegin{concurrency_tag}
+///     \cgalParamDescription{`CGAL::Parallel_tag` or `CGAL::Parallel_if_available_tag`: the loops over faces and
+///       vertices run on TBB's threads (when built with TBB); the result is the same to the last bit}
+///     \cgalParamType{`CGAL::Sequential_tag`, `CGAL::Parallel_tag` or `CGAL::Parallel_if_available_tag`}
+///     \cgalParamDefault{`CGAL::Sequential_tag` (called by another map of the package: that map's)}
+///   \cgalParamNEnd
 /// \cgalNamedParamsEnd
 ///
 /// \pre `tm` is a closed, connected, manifold triangle mesh of genus 0 without degenerate faces
@@ -368,6 +382,7 @@ Map_report ellipsoidal_quasiconformal_map(const TriangleMesh& tm, const Landmark
                                           VertexPointOutMap ellipsoid_map,
                                           const NamedParameters& np = parameters::default_values())
 {
+  const internal::Concurrency_scope concurrency = internal::concurrency_scope_from_parameters(np);
   using CGAL::parameters::choose_parameter;
   using CGAL::parameters::get_parameter;
   const auto a = internal::closed_surface_arrays(tm, np, 2);

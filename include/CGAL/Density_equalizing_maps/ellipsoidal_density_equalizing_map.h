@@ -12,6 +12,7 @@
 #include <CGAL/Density_equalizing_maps/internal/elongated_starts.h>
 #include <CGAL/Density_equalizing_maps/internal/engine_parameters.h>
 #include <CGAL/Density_equalizing_maps/internal/radii_search_flow.h>
+#include <CGAL/Density_equalizing_maps/internal/parallel.h>
 
 #include <boost/property_map/vector_property_map.hpp>
 
@@ -141,6 +142,7 @@ Map_report ellipsoidal_density_equalization(const TriangleMesh& tm, VertexPointO
                                             const NamedParameters& np, double default_tolerance,
                                             const MakeFlow& make_flow)
 {
+  const internal::Concurrency_scope concurrency = internal::concurrency_scope_from_parameters(np);
   const auto a = closed_surface_arrays(tm, np, 2);
   const Eigen::Vector3d radii = ellipsoid_radii_from_parameters(a, np);
   const Vector population = population_from_parameters(a, np);
@@ -198,6 +200,7 @@ template <class TriangleMesh, class VertexPointOutMap,
 Map_report ellipsoidal_density_equalizing_initial_map(const TriangleMesh& tm, VertexPointOutMap initial_map,
                                                       const NamedParameters& np = parameters::default_values())
 {
+  const internal::Concurrency_scope concurrency = internal::concurrency_scope_from_parameters(np);
   const auto a = internal::closed_surface_arrays(tm, np, 2);
   const Eigen::Vector3d radii = internal::ellipsoid_radii_from_parameters(a, np);
   const internal::Vector population = internal::population_from_parameters(a, np);
@@ -254,6 +257,12 @@ Map_report ellipsoidal_density_equalizing_initial_map(const TriangleMesh& tm, Ve
 ///     \cgalParamDescription{maximum number of iterations}
 ///     \cgalParamDefault{300}
 ///   \cgalParamNEnd
+///   \cgalParamNBegin{concurrency_tag}
+///     \cgalParamDescription{`CGAL::Parallel_tag` or `CGAL::Parallel_if_available_tag`: the loops over faces and
+///       vertices run on TBB's threads (when built with TBB); the result is the same to the last bit}
+///     \cgalParamType{`CGAL::Sequential_tag`, `CGAL::Parallel_tag` or `CGAL::Parallel_if_available_tag`}
+///     \cgalParamDefault{`CGAL::Sequential_tag` (called by another map of the package: that map's)}
+///   \cgalParamNEnd
 /// \cgalNamedParamsEnd
 /// \pre `tm` is a closed, connected, manifold triangle mesh of genus 0 without degenerate faces
 ///      (checked: `Invalid_input` otherwise)
@@ -270,6 +279,7 @@ template <class TriangleMesh, class VertexPointOutMap,
 Map_report ellipsoidal_density_equalizing_map(const TriangleMesh& tm, VertexPointOutMap ellipsoid_map,
                                               const NamedParameters& np = parameters::default_values())
 {
+  const internal::Concurrency_scope concurrency = internal::concurrency_scope_from_parameters(np);
   return internal::ellipsoidal_density_equalization(
     tm, ellipsoid_map, np, 1e-3,
     [](const internal::Index_matrix&, const internal::Vector&, const internal::Matrix&, const internal::Engine_options&,
@@ -299,6 +309,12 @@ Map_report ellipsoidal_density_equalizing_map(const TriangleMesh& tm, VertexPoin
 ///     \cgalParamDescription{stop when the relative change of the energy is below it}
 ///     \cgalParamDefault{1e-5}
 ///   \cgalParamNEnd
+///   \cgalParamNBegin{concurrency_tag}
+///     \cgalParamDescription{`CGAL::Parallel_tag` or `CGAL::Parallel_if_available_tag`: the loops over faces and
+///       vertices run on TBB's threads (when built with TBB); the result is the same to the last bit}
+///     \cgalParamType{`CGAL::Sequential_tag`, `CGAL::Parallel_tag` or `CGAL::Parallel_if_available_tag`}
+///     \cgalParamDefault{`CGAL::Sequential_tag` (called by another map of the package: that map's)}
+///   \cgalParamNEnd
 /// \cgalNamedParamsEnd
 /// \pre `tm` is a closed, connected, manifold triangle mesh of genus 0 without degenerate faces
 ///      (checked: `Invalid_input` otherwise)
@@ -313,6 +329,7 @@ template <class TriangleMesh, class VertexPointOutMap,
 Map_report ellipsoidal_density_equalizing_quasiconformal_map(const TriangleMesh& tm, VertexPointOutMap ellipsoid_map,
                                                              const NamedParameters& np = parameters::default_values())
 {
+  const internal::Concurrency_scope concurrency = internal::concurrency_scope_from_parameters(np);
   using CGAL::parameters::choose_parameter;
   using CGAL::parameters::get_parameter;
   const double alpha = choose_parameter(get_parameter(np, internal_np::beltrami_weight), 5.);

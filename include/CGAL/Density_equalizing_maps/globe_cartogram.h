@@ -12,6 +12,7 @@
 #include <CGAL/Density_equalizing_maps/internal/region_area_correction.h>
 #include <CGAL/Density_equalizing_maps/internal/spherical_regions.h>
 #include <CGAL/Density_equalizing_maps/internal/uniform_domain_mesh.h>
+#include <CGAL/Density_equalizing_maps/internal/parallel.h>
 
 #include <CGAL/Simple_cartesian.h>
 #include <CGAL/Surface_mesh.h>
@@ -927,6 +928,12 @@ Globe_cartogram_report globe_cartogram_on(const TriangleMesh& tm, const std::vec
 ///     \cgalParamType{std::size_t}
 ///     \cgalParamDefault{0}
 ///   \cgalParamNEnd
+///   \cgalParamNBegin{concurrency_tag}
+///     \cgalParamDescription{`CGAL::Parallel_tag` or `CGAL::Parallel_if_available_tag`: the loops over faces and
+///       vertices run on TBB's threads (when built with TBB); the result is the same to the last bit}
+///     \cgalParamType{`CGAL::Sequential_tag`, `CGAL::Parallel_tag` or `CGAL::Parallel_if_available_tag`}
+///     \cgalParamDefault{`CGAL::Sequential_tag` (called by another map of the package: that map's)}
+///   \cgalParamNEnd
 /// \cgalNamedParamsEnd
 /// \pre as `face_populations_from_regions()` and `spherical_density_equalizing_map()` (checked)
 /// \returns the areas reached, the errors, the passes, and the populations used
@@ -938,6 +945,7 @@ Globe_cartogram_report globe_cartogram(const TriangleMesh& tm, const std::vector
                                        const std::vector<double>& values, VertexPointOutMap sphere_map,
                                        const NamedParameters& np = parameters::default_values())
 {
+  const internal::Concurrency_scope concurrency = internal::concurrency_scope_from_parameters(np);
   using CGAL::parameters::get_parameter;
   using CGAL::parameters::is_default_parameter;
   if constexpr(is_default_parameter<NamedParameters, internal_np::coarse_globe_vertices_t>::value) {

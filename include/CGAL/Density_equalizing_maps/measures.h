@@ -16,6 +16,7 @@
 #include <CGAL/Density_equalizing_maps/parameters.h>
 #include <CGAL/Density_equalizing_maps/internal/input.h>
 #include <CGAL/Density_equalizing_maps/internal/measures.h>
+#include <CGAL/Density_equalizing_maps/internal/parallel.h>
 
 #include <CGAL/boost/graph/named_params_helper.h>
 
@@ -300,6 +301,7 @@ template <class TriangleMesh, class MappedPointMap, class NamedParameters = para
 Density_variance density_variance(const TriangleMesh& tm, MappedPointMap mapped,
                                   const NamedParameters& np = parameters::default_values())
 {
+  const internal::Concurrency_scope concurrency = internal::concurrency_scope_from_parameters(np);
   const auto a = internal::measure_arrays(tm, np);
   const internal::Vector population = internal::population_from_parameters(a, np);
   const internal::Density_variances v =
@@ -330,6 +332,7 @@ template <class TriangleMesh, class MappedPointMap, class NamedParameters = para
 Distortion_statistics map_distortion(const TriangleMesh& tm, MappedPointMap mapped,
                                      const NamedParameters& np = parameters::default_values())
 {
+  const internal::Concurrency_scope concurrency = internal::concurrency_scope_from_parameters(np);
   const auto a = internal::measure_arrays(tm, np);
   const internal::Distortion d = internal::distortion(a.X, internal::read_mapped_points(a, mapped), a.F);
   Distortion_statistics s;
@@ -368,6 +371,7 @@ struct Mesh_uniformity
 template <class TriangleMesh, class NamedParameters = parameters::Default_named_parameters>
 Mesh_uniformity mesh_uniformity(const TriangleMesh& tm, const NamedParameters& np = parameters::default_values())
 {
+  const internal::Concurrency_scope concurrency = internal::concurrency_scope_from_parameters(np);
   const auto a = internal::measure_arrays(tm, np);
   const internal::Mesh_uniformity u = internal::mesh_uniformity(a.X, a.F);
   Mesh_uniformity r;

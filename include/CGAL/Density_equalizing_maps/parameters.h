@@ -44,6 +44,7 @@ enum boundary_step_t          { boundary_step };
 enum pass_callback_t          { pass_callback };
 enum torus_lattice_t          { torus_lattice };
 enum coarse_globe_vertices_t  { coarse_globe_vertices };
+enum concurrency_tag_t        { concurrency_tag };
 } // namespace internal_np
 
 namespace parameters {
@@ -83,6 +84,7 @@ CGAL_DEM_ADD_NAMED_PARAMETER(boundary_step_t,      boundary_step)
 CGAL_DEM_ADD_NAMED_PARAMETER(torus_lattice_t,      torus_lattice)
 CGAL_DEM_ADD_NAMED_PARAMETER(pass_callback_t,      pass_callback)
 CGAL_DEM_ADD_NAMED_PARAMETER(coarse_globe_vertices_t, coarse_globe_vertices)
+CGAL_DEM_ADD_NAMED_PARAMETER(concurrency_tag_t,    concurrency_tag)
 #undef CGAL_DEM_ADD_NAMED_PARAMETER
 
 namespace internal {

@@ -9,6 +9,7 @@
 #include <CGAL/Density_equalizing_maps/parameters.h>
 #include <CGAL/Density_equalizing_maps/point_transfer.h>
 #include <CGAL/Density_equalizing_maps/internal/uniform_domain_mesh.h>
+#include <CGAL/Density_equalizing_maps/internal/parallel.h>
 
 #include <CGAL/boost/graph/helpers.h>
 
@@ -145,6 +146,7 @@ Remeshing_report remesh_through_map(const TriangleMesh& tm, MappedPointMap mappe
                                     std::size_t number_of_vertices, PolygonMesh& out,
                                     const NamedParameters& np = parameters::default_values())
 {
+  const internal::Concurrency_scope concurrency = internal::concurrency_scope_from_parameters(np);
   internal::check_requested_vertices(number_of_vertices);
   const internal::Domain_shape shape = internal::domain_shape(domain);
   using CGAL::parameters::choose_parameter;

@@ -9,6 +9,7 @@
 #include <CGAL/Density_equalizing_maps/parameters.h>
 #include <CGAL/Density_equalizing_maps/internal/input.h>
 #include <CGAL/Density_equalizing_maps/internal/spherical_conformal.h>
+#include <CGAL/Density_equalizing_maps/internal/parallel.h>
 
 namespace CGAL {
 namespace Density_equalizing_maps {
@@ -55,6 +56,12 @@ namespace Density_equalizing_maps {
 ///     \cgalParamDescription{a model of `SparseLinearAlgebraWithFactorTraits_d` for the SPD systems}
 ///     \cgalParamDefault{`Default_sparse_solver_traits`}
 ///   \cgalParamNEnd
+///   \cgalParamNBegin{concurrency_tag}
+///     \cgalParamDescription{`CGAL::Parallel_tag` or `CGAL::Parallel_if_available_tag`: the loops over faces and
+///       vertices run on TBB's threads (when built with TBB); the result is the same to the last bit}
+///     \cgalParamType{`CGAL::Sequential_tag`, `CGAL::Parallel_tag` or `CGAL::Parallel_if_available_tag`}
+///     \cgalParamDefault{`CGAL::Sequential_tag` (called by another map of the package: that map's)}
+///   \cgalParamNEnd
 /// \cgalNamedParamsEnd
 ///
 /// \pre `tm` is a closed, connected, manifold triangle mesh of genus 0 without degenerate faces
@@ -68,6 +75,7 @@ template <class TriangleMesh, class VertexPointOutMap,
 Map_report spherical_conformal_map(const TriangleMesh& tm, VertexPointOutMap sphere_map,
                                    const NamedParameters& np = parameters::default_values())
 {
+  const internal::Concurrency_scope concurrency = internal::concurrency_scope_from_parameters(np);
   using CGAL::parameters::choose_parameter;
   using CGAL::parameters::get_parameter;
   const auto a = internal::closed_surface_arrays(tm, np, 2);
@@ -111,6 +119,7 @@ template <class TriangleMesh, class VertexPointMap, class VertexPointOutMap,
 Map_report mobius_area_correction(const TriangleMesh& tm, VertexPointMap sphere_map, VertexPointOutMap corrected_map,
                                   const NamedParameters& np = parameters::default_values())
 {
+  const internal::Concurrency_scope concurrency = internal::concurrency_scope_from_parameters(np);
   const auto a = internal::closed_surface_arrays(tm, np, 2);
   internal::Matrix S = internal::read_points(a, sphere_map);
   internal::validate_spherical_points(S, "the spherical map");

@@ -12,6 +12,7 @@
 #include <CGAL/Density_equalizing_maps/internal/engine_parameters.h>
 #include <CGAL/Density_equalizing_maps/internal/landmark_flow.h>
 #include <CGAL/Density_equalizing_maps/internal/spherical_conformal.h>
+#include <CGAL/Density_equalizing_maps/internal/parallel.h>
 
 #include <limits>
 #include <sstream>
@@ -170,6 +171,12 @@ Matrix initial_spherical_map(const Mesh_arrays<TriangleMesh>& a, const NamedPara
 ///       below 4000 vertices), refactored only when it stops being effective. If given, this solver is used
 ///       for every system.}
 ///   \cgalParamNEnd
+///   \cgalParamNBegin{concurrency_tag}
+///     \cgalParamDescription{`CGAL::Parallel_tag` or `CGAL::Parallel_if_available_tag`: the loops over faces and
+///       vertices run on TBB's threads (when built with TBB); the result is the same to the last bit}
+///     \cgalParamType{`CGAL::Sequential_tag`, `CGAL::Parallel_tag` or `CGAL::Parallel_if_available_tag`}
+///     \cgalParamDefault{`CGAL::Sequential_tag` (called by another map of the package: that map's)}
+///   \cgalParamNEnd
 /// \cgalNamedParamsEnd
 ///
 /// \pre `tm` is a closed, connected, manifold triangle mesh of genus 0 without degenerate faces
@@ -187,6 +194,7 @@ template <class TriangleMesh, class VertexPointOutMap,
 Map_report spherical_density_equalizing_map(const TriangleMesh& tm, VertexPointOutMap sphere_map,
                                             const NamedParameters& np = parameters::default_values())
 {
+  const internal::Concurrency_scope concurrency = internal::concurrency_scope_from_parameters(np);
   using CGAL::parameters::choose_parameter;
   using CGAL::parameters::get_parameter;
   const auto a = internal::closed_surface_arrays(tm, np, 2);
@@ -251,6 +259,12 @@ Map_report spherical_density_equalizing_map(const TriangleMesh& tm, VertexPointO
 ///     \cgalParamType{double}
 ///     \cgalParamDefault{0.01}
 ///   \cgalParamNEnd
+///   \cgalParamNBegin{concurrency_tag}
+///     \cgalParamDescription{`CGAL::Parallel_tag` or `CGAL::Parallel_if_available_tag`: the loops over faces and
+///       vertices run on TBB's threads (when built with TBB); the result is the same to the last bit}
+///     \cgalParamType{`CGAL::Sequential_tag`, `CGAL::Parallel_tag` or `CGAL::Parallel_if_available_tag`}
+///     \cgalParamDefault{`CGAL::Sequential_tag` (called by another map of the package: that map's)}
+///   \cgalParamNEnd
 /// \cgalNamedParamsEnd
 /// \pre `tm` is a closed, connected, manifold triangle mesh of genus 0 without degenerate faces
 ///      (checked: `Invalid_input` otherwise)
@@ -269,6 +283,7 @@ Map_report landmark_aligned_spherical_density_equalizing_map(const TriangleMesh&
                                                              VertexPointOutMap sphere_map,
                                                              const NamedParameters& np = parameters::default_values())
 {
+  const internal::Concurrency_scope concurrency = internal::concurrency_scope_from_parameters(np);
   using CGAL::parameters::choose_parameter;
   using CGAL::parameters::get_parameter;
   const auto a = internal::closed_surface_arrays(tm, np, 2);

@@ -12,6 +12,7 @@
 #include <CGAL/Density_equalizing_maps/spherical_density_equalizing_map.h>
 #include <CGAL/Density_equalizing_maps/internal/landmark_warp.h>
 #include <CGAL/Density_equalizing_maps/internal/measures.h>
+#include <CGAL/Density_equalizing_maps/internal/parallel.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <boost/property_map/property_map.hpp>
@@ -400,6 +401,12 @@ void refuse_folded(const Map_report_type& r, const char* which)
 ///   \cgalParamNBegin{vertex_point_map, vertex_index_map}
 ///     \cgalParamDescription{of the source, as for `spherical_conformal_map()`; the target uses its internal maps}
 ///   \cgalParamNEnd
+///   \cgalParamNBegin{concurrency_tag}
+///     \cgalParamDescription{`CGAL::Parallel_tag` or `CGAL::Parallel_if_available_tag`: the loops over faces and
+///       vertices run on TBB's threads (when built with TBB); the result is the same to the last bit}
+///     \cgalParamType{`CGAL::Sequential_tag`, `CGAL::Parallel_tag` or `CGAL::Parallel_if_available_tag`}
+///     \cgalParamDefault{`CGAL::Sequential_tag` (called by another map of the package: that map's)}
+///   \cgalParamNEnd
 /// \cgalNamedParamsEnd
 ///
 /// \pre `source` and `target` are closed, connected, manifold triangle meshes of genus 0 without
@@ -419,6 +426,7 @@ Registration_report register_surfaces(const SourceMesh& source, const TargetMesh
                                       const LandmarkPairs& landmark_pairs, RegisteredPointMap registered_points,
                                       const NamedParameters& np = parameters::default_values())
 {
+  const internal::Concurrency_scope concurrency = internal::concurrency_scope_from_parameters(np);
   using CGAL::parameters::choose_parameter;
   using CGAL::parameters::get_parameter;
   using CGAL::parameters::is_default_parameter;

@@ -9,6 +9,7 @@
 #include <CGAL/Density_equalizing_maps/parameters.h>
 #include <CGAL/Density_equalizing_maps/internal/engine_parameters.h>
 #include <CGAL/Density_equalizing_maps/internal/torus_domain.h>
+#include <CGAL/Density_equalizing_maps/internal/parallel.h>
 
 #include <array>
 #include <utility>
@@ -165,6 +166,12 @@ inline void fill_toroidal_report(const Toroidal_run& run, const Torus_radii& t, 
 ///       switching from Jacobi to the lagged factorization on strongly graded meshes.
 ///       If given, this solver is used for every system.}
 ///   \cgalParamNEnd
+///   \cgalParamNBegin{concurrency_tag}
+///     \cgalParamDescription{`CGAL::Parallel_tag` or `CGAL::Parallel_if_available_tag`: the loops over faces and
+///       vertices run on TBB's threads (when built with TBB); the result is the same to the last bit}
+///     \cgalParamType{`CGAL::Sequential_tag`, `CGAL::Parallel_tag` or `CGAL::Parallel_if_available_tag`}
+///     \cgalParamDefault{`CGAL::Sequential_tag` (called by another map of the package: that map's)}
+///   \cgalParamNEnd
 /// \cgalNamedParamsEnd
 ///
 /// \pre `tm` is a closed, connected, manifold triangle mesh of genus 1 without degenerate faces
@@ -183,6 +190,7 @@ template <class TriangleMesh, class VertexPointOutMap,
 Map_report toroidal_density_equalizing_map(const TriangleMesh& tm, VertexPointOutMap torus_map,
                                            const NamedParameters& np = parameters::default_values())
 {
+  const internal::Concurrency_scope concurrency = internal::concurrency_scope_from_parameters(np);
   const internal::Torus_radii t = internal::torus_radii_from_parameters(np);
   const auto a = internal::closed_surface_arrays(tm, np, 0);
   const internal::Vector population = internal::population_from_parameters(a, np);
@@ -229,6 +237,12 @@ Map_report toroidal_density_equalizing_map(const TriangleMesh& tm, VertexPointOu
 ///     \cgalParamType{`std::vector<std::pair<vertex_descriptor, vertex_descriptor> >`}
 ///     \cgalParamDefault{loops from a tree-cotree decomposition rooted at the first vertex}
 ///   \cgalParamNEnd
+///   \cgalParamNBegin{concurrency_tag}
+///     \cgalParamDescription{`CGAL::Parallel_tag` or `CGAL::Parallel_if_available_tag`: the loops over faces and
+///       vertices run on TBB's threads (when built with TBB); the result is the same to the last bit}
+///     \cgalParamType{`CGAL::Sequential_tag`, `CGAL::Parallel_tag` or `CGAL::Parallel_if_available_tag`}
+///     \cgalParamDefault{`CGAL::Sequential_tag` (called by another map of the package: that map's)}
+///   \cgalParamNEnd
 /// \cgalNamedParamsEnd
 /// `face_population_map` defaults to the face areas of the input, which makes the map area-preserving.
 ///
@@ -248,6 +262,7 @@ template <class TriangleMesh, class VertexPointOutMap,
 Map_report toroidal_parameterization(const TriangleMesh& tm, VertexPointOutMap torus_map,
                                      const NamedParameters& np = parameters::default_values())
 {
+  const internal::Concurrency_scope concurrency = internal::concurrency_scope_from_parameters(np);
   using CGAL::parameters::get_parameter;
   using CGAL::parameters::is_default_parameter;
   const internal::Torus_radii t = internal::torus_radii_from_parameters(np);

@@ -65,15 +65,17 @@ inline Complex beltrami_from_derivatives(Complex wx, Complex wy)
 inline Complex_vector beltrami_coefficient(const Matrix& P, const Matrix& W, const Index_matrix& F)
 {
   Complex_vector mu(F.rows());
-  for(Eigen::Index k = 0; k < F.rows(); ++k) {
-    const Planar_derivative d = planar_derivative(P, F, k);
-    Complex wx(0, 0), wy(0, 0);
-    for(int a = 0; a < 3; ++a) {
-      const Complex w(W(F(k, a), 0), W(F(k, a), 1));
-      wx += d.dx[a] * w; wy += d.dy[a] * w;
+  parallel_for(F.rows(), [&](Eigen::Index begin, Eigen::Index end) {
+    for(Eigen::Index k = begin; k < end; ++k) {
+      const Planar_derivative d = planar_derivative(P, F, k);
+      Complex wx(0, 0), wy(0, 0);
+      for(int a = 0; a < 3; ++a) {
+        const Complex w(W(F(k, a), 0), W(F(k, a), 1));
+        wx += d.dx[a] * w; wy += d.dy[a] * w;
+      }
+      mu[k] = beltrami_from_derivatives(wx, wy);
     }
-    mu[k] = beltrami_from_derivatives(wx, wy);
-  }
+  });
   return mu;
 }
 
@@ -84,17 +86,19 @@ inline Complex_vector beltrami_coefficient(const Matrix& P, const Matrix& W, con
 inline Complex_vector metric_beltrami_coefficient(const Matrix& P, const Matrix& X, const Index_matrix& F)
 {
   Complex_vector mu(F.rows());
-  for(Eigen::Index k = 0; k < F.rows(); ++k) {
-    const Planar_derivative d = planar_derivative(P, F, k);
-    Eigen::Vector3d Xx = Eigen::Vector3d::Zero(), Xy = Eigen::Vector3d::Zero();
-    for(int a = 0; a < 3; ++a) {
-      const Eigen::Vector3d x(X(F(k, a), 0), X(F(k, a), 1), X(F(k, a), 2));
-      Xx += d.dx[a] * x; Xy += d.dy[a] * x;
+  parallel_for(F.rows(), [&](Eigen::Index begin, Eigen::Index end) {
+    for(Eigen::Index k = begin; k < end; ++k) {
+      const Planar_derivative d = planar_derivative(P, F, k);
+      Eigen::Vector3d Xx = Eigen::Vector3d::Zero(), Xy = Eigen::Vector3d::Zero();
+      for(int a = 0; a < 3; ++a) {
+        const Eigen::Vector3d x(X(F(k, a), 0), X(F(k, a), 1), X(F(k, a), 2));
+        Xx += d.dx[a] * x; Xy += d.dy[a] * x;
+      }
+      const double E = Xx.squaredNorm(), Fm = Xx.dot(Xy), G = Xy.squaredNorm();
+      const double det = std::max(E * G - Fm * Fm, 0.);
+      mu[k] = Complex(E - G, 2 * Fm) / (E + G + 2 * std::sqrt(det));
     }
-    const double E = Xx.squaredNorm(), Fm = Xx.dot(Xy), G = Xy.squaredNorm();
-    const double det = std::max(E * G - Fm * Fm, 0.);
-    mu[k] = Complex(E - G, 2 * Fm) / (E + G + 2 * std::sqrt(det));
-  }
+  });
   return mu;
 }
 
@@ -110,13 +114,17 @@ public:
   Beltrami_magnitude_from_reference(const Matrix& X, const Index_matrix& F) : m_F(F)
   {
     m_derivatives.resize(static_cast<std::size_t>(F.rows()));
-    for(Eigen::Index k = 0; k < F.rows(); ++k) m_derivatives[static_cast<std::size_t>(k)] = flat_derivative(X, F, k);
+    parallel_for(F.rows(), [&](Eigen::Index begin, Eigen::Index end) {
+      for(Eigen::Index k = begin; k < end; ++k) m_derivatives[static_cast<std::size_t>(k)] = flat_derivative(X, F, k);
+    });
   }
 
   Vector operator()(const Matrix& Y) const
   {
     Vector m(m_F.rows());
-    for(Eigen::Index k = 0; k < m_F.rows(); ++k) m[k] = magnitude(m_derivatives[static_cast<std::size_t>(k)], Y, m_F, k);
+    parallel_for(m_F.rows(), [&](Eigen::Index begin, Eigen::Index end) {
+      for(Eigen::Index k = begin; k < end; ++k) m[k] = magnitude(m_derivatives[static_cast<std::size_t>(k)], Y, m_F, k);
+    });
     return m;
   }
 
@@ -160,7 +168,9 @@ inline Vector beltrami_magnitude_3d(const Matrix& X, const Matrix& Y, const Inde
 {
   typedef Beltrami_magnitude_from_reference B;
   Vector m(F.rows());
-  for(Eigen::Index k = 0; k < F.rows(); ++k) m[k] = B::magnitude(B::flat_derivative(X, F, k), Y, F, k);
+  parallel_for(F.rows(), [&](Eigen::Index begin, Eigen::Index end) {
+    for(Eigen::Index k = begin; k < end; ++k) m[k] = B::magnitude(B::flat_derivative(X, F, k), Y, F, k);
+  });
   return m;
 }
 
@@ -176,24 +186,26 @@ inline void truncate_beltrami(Complex_vector& mu, double bound)
 inline Matrix beltrami_stiffness_blocks(const Matrix& P, const Index_matrix& F, const Complex_vector& mu)
 {
   Matrix B(F.rows(), 9);
-  for(Eigen::Index k = 0; k < F.rows(); ++k) {
-    const double rho = mu[k].real(), tau = mu[k].imag();
-    const double s = 1 - std::norm(mu[k]);
-    const double a1 = ((1 - rho) * (1 - rho) + tau * tau) / s;
-    const double a2 = -2 * tau / s;
-    const double a3 = ((1 + rho) * (1 + rho) + tau * tau) / s;
-    Eigen::Vector2d eta[3];
-    for(int a = 0; a < 3; ++a) {
-      const int b = F(k, (a + 1) % 3), c = F(k, (a + 2) % 3);
-      eta[a] = Eigen::Vector2d(P(b, 1) - P(c, 1), P(c, 0) - P(b, 0));
+  parallel_for(F.rows(), [&](Eigen::Index begin, Eigen::Index end) {
+    for(Eigen::Index k = begin; k < end; ++k) {
+      const double rho = mu[k].real(), tau = mu[k].imag();
+      const double s = 1 - std::norm(mu[k]);
+      const double a1 = ((1 - rho) * (1 - rho) + tau * tau) / s;
+      const double a2 = -2 * tau / s;
+      const double a3 = ((1 + rho) * (1 + rho) + tau * tau) / s;
+      Eigen::Vector2d eta[3];
+      for(int a = 0; a < 3; ++a) {
+        const int b = F(k, (a + 1) % 3), c = F(k, (a + 2) % 3);
+        eta[a] = Eigen::Vector2d(P(b, 1) - P(c, 1), P(c, 0) - P(b, 0));
+      }
+      const double area = std::abs(0.5 * ((P(F(k, 1), 0) - P(F(k, 0), 0)) * (P(F(k, 2), 1) - P(F(k, 0), 1)) -
+                                          (P(F(k, 1), 1) - P(F(k, 0), 1)) * (P(F(k, 2), 0) - P(F(k, 0), 0))));
+      for(int a = 0; a < 3; ++a)
+        for(int b = 0; b < 3; ++b)
+          B(k, 3 * a + b) = (a1 * eta[a].x() * eta[b].x() + a2 * (eta[a].x() * eta[b].y() + eta[a].y() * eta[b].x()) +
+                             a3 * eta[a].y() * eta[b].y()) / (4 * area);
     }
-    const double area = std::abs(0.5 * ((P(F(k, 1), 0) - P(F(k, 0), 0)) * (P(F(k, 2), 1) - P(F(k, 0), 1)) -
-                                        (P(F(k, 1), 1) - P(F(k, 0), 1)) * (P(F(k, 2), 0) - P(F(k, 0), 0))));
-    for(int a = 0; a < 3; ++a)
-      for(int b = 0; b < 3; ++b)
-        B(k, 3 * a + b) = (a1 * eta[a].x() * eta[b].x() + a2 * (eta[a].x() * eta[b].y() + eta[a].y() * eta[b].x()) +
-                           a3 * eta[a].y() * eta[b].y()) / (4 * area);
-  }
+  });
   return B;
 }
 

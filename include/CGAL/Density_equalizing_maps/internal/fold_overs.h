@@ -10,6 +10,7 @@
 // vertex tests the very same numbers and the predicates are exact for them.
 
 #include <CGAL/Density_equalizing_maps/internal/mesh_arrays.h>
+#include <CGAL/Density_equalizing_maps/internal/parallel.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
@@ -28,13 +29,19 @@ typedef CGAL::Exact_predicates_inexact_constructions_kernel Epick;
 inline std::vector<Eigen::Index> inverted_faces_about_center(const Matrix& Y, const Index_matrix& F,
                                                               const Eigen::Vector3d& center = Eigen::Vector3d::Zero())
 {
-  std::vector<Epick::Point_3> P;
-  P.reserve(static_cast<std::size_t>(Y.rows()));
-  for(Eigen::Index i = 0; i < Y.rows(); ++i) P.emplace_back(Y(i, 0), Y(i, 1), Y(i, 2));
+  std::vector<Epick::Point_3> P(static_cast<std::size_t>(Y.rows()));
+  parallel_for(Y.rows(), [&](Eigen::Index begin, Eigen::Index end) {
+    for(Eigen::Index i = begin; i < end; ++i) P[i] = Epick::Point_3(Y(i, 0), Y(i, 1), Y(i, 2));
+  });
   const Epick::Point_3 c(center.x(), center.y(), center.z());
+  std::vector<char> inverted(static_cast<std::size_t>(F.rows()));
+  parallel_for(F.rows(), [&](Eigen::Index begin, Eigen::Index end) {
+    for(Eigen::Index k = begin; k < end; ++k)
+      inverted[k] = CGAL::orientation(c, P[F(k, 0)], P[F(k, 1)], P[F(k, 2)]) != CGAL::POSITIVE;
+  });
   std::vector<Eigen::Index> out;
   for(Eigen::Index k = 0; k < F.rows(); ++k)
-    if(CGAL::orientation(c, P[F(k, 0)], P[F(k, 1)], P[F(k, 2)]) != CGAL::POSITIVE) out.push_back(k);
+    if(inverted[k]) out.push_back(k);
   return out;
 }
 
@@ -48,12 +55,15 @@ inline std::size_t count_inverted_faces_about_center(const Matrix& Y, const Inde
 /// +1 counter-clockwise, -1 clockwise, 0 degenerate.
 inline std::vector<int> planar_orientations(const Matrix& W, const Index_matrix& F)
 {
-  std::vector<Epick::Point_2> P;
-  P.reserve(static_cast<std::size_t>(W.rows()));
-  for(Eigen::Index i = 0; i < W.rows(); ++i) P.emplace_back(W(i, 0), W(i, 1));
+  std::vector<Epick::Point_2> P(static_cast<std::size_t>(W.rows()));
+  parallel_for(W.rows(), [&](Eigen::Index begin, Eigen::Index end) {
+    for(Eigen::Index i = begin; i < end; ++i) P[i] = Epick::Point_2(W(i, 0), W(i, 1));
+  });
   std::vector<int> o(static_cast<std::size_t>(F.rows()));
-  for(Eigen::Index k = 0; k < F.rows(); ++k)
-    o[k] = static_cast<int>(CGAL::orientation(P[F(k, 0)], P[F(k, 1)], P[F(k, 2)]));
+  parallel_for(F.rows(), [&](Eigen::Index begin, Eigen::Index end) {
+    for(Eigen::Index k = begin; k < end; ++k)
+      o[k] = static_cast<int>(CGAL::orientation(P[F(k, 0)], P[F(k, 1)], P[F(k, 2)]));
+  });
   return o;
 }
 

@@ -11,6 +11,7 @@
 // needles and slivers stay finite.
 
 #include <CGAL/Density_equalizing_maps/internal/mesh_arrays.h>
+#include <CGAL/Density_equalizing_maps/internal/parallel.h>
 
 #include <Eigen/Geometry> // cross products
 #include <Eigen/Sparse>
@@ -42,7 +43,9 @@ inline Eigen::Vector3d face_normal(const Matrix& X, const Index_matrix& F, Eigen
 inline Vector face_areas(const Matrix& X, const Index_matrix& F)
 {
   Vector A(F.rows());
-  for(Eigen::Index k = 0; k < F.rows(); ++k) A[k] = 0.5 * face_normal(X, F, k).norm();
+  parallel_for(F.rows(), [&](Eigen::Index begin, Eigen::Index end) {
+    for(Eigen::Index k = begin; k < end; ++k) A[k] = 0.5 * face_normal(X, F, k).norm();
+  });
   return A;
 }
 
@@ -88,7 +91,9 @@ inline Face_sample face_sample(const Index_matrix& F, const Vector& source_area,
 inline Vector signed_areas_2(const Matrix& X, const Index_matrix& F)
 {
   Vector A(F.rows());
-  for(Eigen::Index k = 0; k < F.rows(); ++k) A[k] = 0.5 * face_normal(X, F, k).z();
+  parallel_for(F.rows(), [&](Eigen::Index begin, Eigen::Index end) {
+    for(Eigen::Index k = begin; k < end; ++k) A[k] = 0.5 * face_normal(X, F, k).z();
+  });
   return A;
 }
 
@@ -111,18 +116,20 @@ public:
     for(Eigen::Index k = 0; k < F.rows(); ++k)
       for(int a = 0; a < 3; ++a) ++first[F(k, a) + 1];
     for(Eigen::Index i = 0; i < n; ++i) first[i + 1] += first[i];
-    std::vector<int> incident(static_cast<std::size_t>(first[n]));
+    // corners (3 k + a) at each vertex, faces in increasing order
+    m_corners.resize(static_cast<std::size_t>(first[n]));
     {
       std::vector<int> next(first.begin(), first.end() - 1);
       for(Eigen::Index k = 0; k < F.rows(); ++k)
-        for(int a = 0; a < 3; ++a) incident[next[F(k, a)]++] = int(k);
+        for(int a = 0; a < 3; ++a) m_corners[next[F(k, a)]++] = int(3 * k + a);
     }
+    m_first_corner = std::move(first);
     std::vector<int> outer(static_cast<std::size_t>(n) + 1, 0), inner, column;
     inner.reserve(static_cast<std::size_t>(7 * n));
     for(Eigen::Index c = 0; c < n; ++c) {
       column.assign(1, int(c));
-      for(int s = first[c]; s < first[c + 1]; ++s)
-        for(int a = 0; a < 3; ++a) column.push_back(F(incident[s], a));
+      for(int s = m_first_corner[c]; s < m_first_corner[c + 1]; ++s)
+        for(int a = 0; a < 3; ++a) column.push_back(F(m_corners[s] / 3, a));
       std::sort(column.begin(), column.end());
       column.erase(std::unique(column.begin(), column.end()), column.end());
       inner.insert(inner.end(), column.begin(), column.end());
@@ -153,11 +160,21 @@ public:
   {
     if(!has_pattern(S)) S = m_pattern;
     double* v = S.valuePtr();
-    std::fill(v, v + S.nonZeros(), 0.);
-    for(Eigen::Index k = 0; k < blocks.rows(); ++k)
-      for(int s = 0; s < 9; ++s) v[m_slot(k, s)] += blocks(k, s);
-    if(diagonal)
-      for(Eigen::Index i = 0; i < diagonal->size(); ++i) v[m_diag[i]] += (*diagonal)[i];
+    const int* outer = S.outerIndexPtr();
+    // Column by column, each column by one thread: the entries of column c
+    // come from the faces at vertex c, added in increasing face order (as a
+    // scatter over the faces would add them), so the sums are the same on
+    // any number of threads.
+    parallel_for(size(), [&](Eigen::Index begin, Eigen::Index end) {
+      for(Eigen::Index c = begin; c < end; ++c) {
+        std::fill(v + outer[c], v + outer[c + 1], 0.);
+        for(int s = m_first_corner[c]; s < m_first_corner[c + 1]; ++s) {
+          const int k = m_corners[s] / 3, b = m_corners[s] % 3;
+          for(int a = 0; a < 3; ++a) v[m_slot(k, 3 * a + b)] += blocks(k, 3 * a + b);
+        }
+        if(diagonal) v[m_diag[c]] += (*diagonal)[c];
+      }
+    });
   }
 
   Eigen::Index size() const { return m_pattern.rows(); }
@@ -183,6 +200,7 @@ private:
   Sparse_matrix m_pattern;
   Eigen::Matrix<int, Eigen::Dynamic, 9> m_slot; // value slots; int like the matrix indices (half the memory)
   std::vector<Eigen::Index> m_diag;
+  std::vector<int> m_first_corner, m_corners; // the corners 3 k + a at each vertex (column)
 };
 
 /// Local cotangent stiffness blocks (m x 9) times `scale`, written into B
@@ -192,33 +210,35 @@ inline void cotangent_stiffness_blocks(const Matrix& X, const Index_matrix& F, d
 {
   B.resize(F.rows(), 9);
   const bool planar = X.cols() == 2; // planar charts and layouts: no third coordinate
-  for(Eigen::Index k = 0; k < F.rows(); ++k) {
-    double w[3]; // scale cot(a) / 2
-    if(planar) {
-      double e[3][2]; // e[a] = x_{a+1} - x_a
-      for(int a = 0; a < 3; ++a)
-        for(int d = 0; d < 2; ++d) e[a][d] = X(F(k, (a + 1) % 3), d) - X(F(k, a), d);
-      const double twice_area = std::abs(e[0][0] * (X(F(k, 2), 1) - X(F(k, 0), 1)) -
-                                         e[0][1] * (X(F(k, 2), 0) - X(F(k, 0), 0)));
-      const double factor = -0.5 * scale / twice_area; // one division per face: the planar loops are hot
-      for(int a = 0; a < 3; ++a) {
-        const double* q = e[a];           // x_{a+1} - x_a
-        const double* r = e[(a + 2) % 3]; // x_a - x_{a+2} = -(x_{a+2} - x_a)
-        w[a] = factor * (q[0] * r[0] + q[1] * r[1]);
+  parallel_for(F.rows(), [&](Eigen::Index begin, Eigen::Index end) {
+    for(Eigen::Index k = begin; k < end; ++k) {
+      double w[3]; // scale cot(a) / 2
+      if(planar) {
+        double e[3][2]; // e[a] = x_{a+1} - x_a
+        for(int a = 0; a < 3; ++a)
+          for(int d = 0; d < 2; ++d) e[a][d] = X(F(k, (a + 1) % 3), d) - X(F(k, a), d);
+        const double twice_area = std::abs(e[0][0] * (X(F(k, 2), 1) - X(F(k, 0), 1)) -
+                                           e[0][1] * (X(F(k, 2), 0) - X(F(k, 0), 0)));
+        const double factor = -0.5 * scale / twice_area; // one division per face: the planar loops are hot
+        for(int a = 0; a < 3; ++a) {
+          const double* q = e[a];           // x_{a+1} - x_a
+          const double* r = e[(a + 2) % 3]; // x_a - x_{a+2} = -(x_{a+2} - x_a)
+          w[a] = factor * (q[0] * r[0] + q[1] * r[1]);
+        }
+      } else {
+        const double twice_area = face_normal(X, F, k).norm();
+        for(int a = 0; a < 3; ++a) {
+          const Eigen::Vector3d p = row3(X, F(k, a)), q = row3(X, F(k, (a + 1) % 3)), r = row3(X, F(k, (a + 2) % 3));
+          w[a] = scale * (0.5 * ((q - p).dot(r - p) / twice_area));
+        }
       }
-    } else {
-      const double twice_area = face_normal(X, F, k).norm();
       for(int a = 0; a < 3; ++a) {
-        const Eigen::Vector3d p = row3(X, F(k, a)), q = row3(X, F(k, (a + 1) % 3)), r = row3(X, F(k, (a + 2) % 3));
-        w[a] = scale * (0.5 * ((q - p).dot(r - p) / twice_area));
+        const int b = (a + 1) % 3, c = (a + 2) % 3;
+        B(k, 3 * b + c) = B(k, 3 * c + b) = -w[a];
+        B(k, 4 * a) = w[b] + w[c];
       }
     }
-    for(int a = 0; a < 3; ++a) {
-      const int b = (a + 1) % 3, c = (a + 2) % 3;
-      B(k, 3 * b + c) = B(k, 3 * c + b) = -w[a];
-      B(k, 4 * a) = w[b] + w[c];
-    }
-  }
+  });
 }
 
 /// Local cotangent stiffness blocks (m x 9): L_bc -= cot(a)/2, L_bb += cot(a)/2, ...

@@ -211,14 +211,16 @@ inline Complex mobius_rotation_dilation(Complex z, Complex w0, double s)
 /// mean |log(normalized image area / normalized input area)| over faces with finite values.
 inline double mean_abs_log_area_ratio(const Vector& source_area, const Vector& image_area)
 {
-  const double ss = source_area.sum(), si = image_area.sum();
-  double sum = 0;
-  Eigen::Index count = 0;
-  for(Eigen::Index k = 0; k < source_area.size(); ++k) {
+  const Eigen::Index m = source_area.size();
+  const double ss = parallel_sum(m, [&](Eigen::Index k) { return source_area[k]; });
+  const double si = parallel_sum(m, [&](Eigen::Index k) { return image_area[k]; });
+  // the sum of |log ratio| and the number of faces where it is finite (a
+  // count held in a double is exact up to 2^53 faces)
+  const std::array<double, 2> sum_count = parallel_sums<2>(m, [&](Eigen::Index k, std::array<double, 2>& s) {
     const double d = std::log((image_area[k] / si) / (source_area[k] / ss));
-    if(std::isfinite(d)) { sum += std::abs(d); ++count; }
-  }
-  return count ? sum / count : std::numeric_limits<double>::infinity();
+    if(std::isfinite(d)) { s[0] += std::abs(d); s[1] += 1.; }
+  });
+  return sum_count[1] > 0 ? sum_count[0] / sum_count[1] : std::numeric_limits<double>::infinity();
 }
 
 /// Nelder-Mead minimization in R^3 (the objective is non-smooth).
@@ -276,9 +278,10 @@ double fold_free_dilation_fraction(const Eigen::Vector3d& xi, const Index_matrix
 {
   auto oriented = [&](double t) {
     apply(Eigen::Vector3d(xi[0], xi[1], t * xi[2]));
-    for(Eigen::Index k = 0; k < F.rows(); ++k)
-      if(!(row3(q, F(k, 0)).dot(row3(q, F(k, 1)).cross(row3(q, F(k, 2)))) > 0)) return false;
-    return true;
+    const double turned = parallel_sum(F.rows(), [&](Eigen::Index k) {
+      return row3(q, F(k, 0)).dot(row3(q, F(k, 1)).cross(row3(q, F(k, 2)))) > 0 ? 0. : 1.;
+    });
+    return turned == 0;
   };
   if(oriented(1.)) return 1.;
   double lo = 0, hi = 1;
@@ -302,8 +305,12 @@ inline Matrix mobius_correction(const Vector& target_area, const Index_matrix& F
   auto apply = [&](const Eigen::Vector3d& xi, const std::vector<Eigen::Index>& vertices) {
     const Complex w0(xi[0], xi[1]);
     const double dilation = std::exp(xi[2]);
-    for(Eigen::Index i : vertices)
-      q.row(i) = inverse_north_stereographic(mobius_rotation_scaling(z[i], w0, dilation)).transpose();
+    parallel_for(Eigen::Index(vertices.size()), [&](Eigen::Index begin, Eigen::Index end) {
+      for(Eigen::Index j = begin; j < end; ++j) {
+        const Eigen::Index i = vertices[j];
+        q.row(i) = inverse_north_stereographic(mobius_rotation_scaling(z[i], w0, dilation)).transpose();
+      }
+    });
   };
   // The objective is a mean over faces: the search runs on a sample of about
   // 4000 faces and is polished on a sample of about 16,000 (120 evaluations
