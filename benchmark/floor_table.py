@@ -18,6 +18,8 @@ factorization.
       [--torus R r]   (then the default methods are tdem and toroidal-parameterization)
       [--old-build-dir DIR]  (also runs DIR/bin/dem, interleaved with the new one
                               run by run, and prints its median and peak memory)
+      [--dem-threads 1 2]    (runs the new dem once per thread count, with
+                              --threads N, interleaved; default: dem's own, every core)
 
 The median CPU time of the mapping (from dem's summary line; one thread:
 on a busy machine closer to the unloaded wall time than the wall time) is
@@ -45,7 +47,7 @@ def run_floor(exe, mesh, repeat):
 def run_dem(dem, method_spec, mesh, extra, threads):
     """(seconds of the mapping, its CPU seconds, peak RSS in bytes, exit status)."""
     name, _, opts = method_spec.partition(":")
-    args = [dem, name, mesh] + [o for o in opts.split(",") if o] + extra
+    args = [dem[0], name, mesh] + [o for o in opts.split(",") if o] + dem[1] + extra
     env = dict(os.environ)
     if threads:
         for k in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS"):
@@ -77,11 +79,17 @@ def main():
     ap.add_argument("--build-dir", default=os.environ.get("DEM_BUILD_DIR", "build"))
     ap.add_argument("--threads", type=int, default=0, help="OMP/BLAS threads for dem (0: leave as is)")
     ap.add_argument("--old-build-dir", help="a build of the old sources: its dem runs interleaved with the new one")
+    ap.add_argument("--dem-threads", type=int, nargs="+",
+                    help="run the new dem with --threads N for each N (its parallel loops)")
     a = ap.parse_args()
     floor_exe = os.path.join(a.build_dir, "bin", "factorization_floor")
-    builds = [("new", os.path.join(a.build_dir, "bin", "dem"))]
+    new_dem = os.path.join(a.build_dir, "bin", "dem")
+    if a.dem_threads:
+        builds = [(f"new, {n} thread{'s' if n > 1 else ''}", (new_dem, ["--threads", str(n)])) for n in a.dem_threads]
+    else:
+        builds = [("new", (new_dem, []))]
     if a.old_build_dir:
-        builds.append(("old", os.path.join(a.old_build_dir, "bin", "dem")))
+        builds.append(("old", (os.path.join(a.old_build_dir, "bin", "dem"), [])))
     extra = ["--torus", a.torus[0], a.torus[1]] if a.torus else []
     methods = a.methods or (["tdem", "toroidal-parameterization"] if a.torus else
                             ["spherical-conformal", "spherical-conformal:--mobius", "ellipsoidal-conformal", "sdem"])

@@ -220,6 +220,18 @@ int main()
     expect(dem("sdem \"" + sphere_off + "\" --time-step abc"), 2, "unreadable number", "not a number");
     expect(dem("spherical-conformal"), 2, "missing INPUT", "INPUT");
     expect(dem("sdem \"" + sphere_off + "\" --max-iterations 1.5"), 2, "non-integer iteration count");
+    expect(dem("spherical-conformal \"" + sphere_off + "\" --threads 0"), 2, "zero threads", "--threads");
+    expect(dem("spherical-conformal \"" + sphere_off + "\" --threads"), 2, "--threads without a number", "--threads");
+  }
+
+  // --- --threads: the map is the same, to the last printed digit, on one thread and on two
+  {
+    const std::string one = (tmp_dir / "one_thread.off").string(), two = (tmp_dir / "two_threads.off").string();
+    const Soup fine = icosphere(5); // 20,480 faces: several blocks of the parallel loops
+    const std::string fine_off = write_off("fine_sphere.off", fine);
+    if(expect(dem("sdem \"" + fine_off + "\" --quiet --threads 1 --output \"" + one + "\""), 0, "sdem --threads 1") &&
+       expect(dem("sdem \"" + fine_off + "\" --quiet --threads 2 --output \"" + two + "\""), 0, "sdem --threads 2"))
+      check(read_text(one) == read_text(two), "sdem --threads 1 and --threads 2 write the same file");
   }
 
   // --- sidecar files: exit 3, the message names the line
