@@ -297,6 +297,42 @@ void solver_clones_keep_the_settings()
     user->set_ordering_effort(I::Ordering_effort::fast);
     check(user->factor(A) && cholmod_of(*user).nmethods == 2, "fast ordering keeps a user's choice of methods");
   }
+  // The diffusion solver's lagged factorization: simplicial LDL^T for small
+  // systems, the supernodal default from supernodal_diffusion_from unknowns
+  // on (a simplicial factorization of 1M faces costs ~30 s); a clone keeps
+  // the rule, and both solve.
+  {
+    typedef I::Eigen_traits_spd_solver<I::Simplicial_ldlt_traits> Simplicial;
+    typedef I::Eigen_traits_spd_solver<DEM::Default_sparse_solver_traits> Supernodal;
+    auto path = [](Eigen::Index n) {
+      I::Sparse_matrix P(n, n);
+      std::vector<Eigen::Triplet<double> > t;
+      for(Eigen::Index i = 0; i < n; ++i) {
+        t.emplace_back(int(i), int(i), 2.5);
+        if(i > 0) { t.emplace_back(int(i), int(i - 1), -1.); t.emplace_back(int(i - 1), int(i), -1.); }
+      }
+      P.setFromTriplets(t.begin(), t.end());
+      return P;
+    };
+    const std::unique_ptr<I::Spd_solver> lagged = I::make_lagged_diffusion_factorization();
+    const std::unique_ptr<I::Spd_solver> lagged_copy = lagged->clone();
+    for(const I::Spd_solver* prototype : {lagged.get(), lagged_copy.get()}) {
+      std::unique_ptr<I::Spd_solver> s = prototype->clone();
+      auto& dispatch = dynamic_cast<I::Size_dispatched_spd_solver&>(*s);
+      for(Eigen::Index n : {Eigen::Index(30), I::supernodal_diffusion_from - 1, I::supernodal_diffusion_from}) {
+        const I::Sparse_matrix P = path(n);
+        const I::Matrix rhs = I::Matrix::Ones(n, 2);
+        I::Matrix sol;
+        check(s->factor(P) && s->solve(rhs, sol) && (P * sol - rhs).norm() <= 1e-12 * rhs.norm(),
+              "lagged diffusion factorization solves " + std::to_string(n) + " unknowns");
+        const bool supernodal = dynamic_cast<const Supernodal*>(dispatch.active()) != nullptr;
+        const bool simplicial = dynamic_cast<const Simplicial*>(dispatch.active()) != nullptr;
+        check(n < I::supernodal_diffusion_from ? simplicial : supernodal,
+              "lagged diffusion factorization of " + std::to_string(n) + " unknowns is " +
+                (n < I::supernodal_diffusion_from ? "simplicial" : "supernodal"));
+      }
+    }
+  }
 #endif
 
   // End to end: a configured CG solver is usable by a method that clones it.

@@ -86,18 +86,39 @@ std::unique_ptr<Spd_solver> loop_solver_from_parameters(const NamedParameters& n
     return solver_from_parameters(np);
 }
 
+/// The lagged factorization of the diffusion solver: a simplicial LDL^T below
+/// `supernodal_diffusion_from` unknowns, where its triangular solves (applied
+/// several times per iteration) are the cheapest, and the default supernodal
+/// Cholesky factorization from there on, where the simplicial factorization
+/// becomes the cost of the whole run. Measured (one thread, medians of 5
+/// interleaved runs, benchmark/RESULTS.md): SDEM on a 100K-face sphere 5.5 ->
+/// 2.9 s, on 1M faces 96 -> 42 s; below about 15,000 unknowns the two are
+/// within the noise or the simplicial one is faster (tdem_torus_4, 3,200
+/// unknowns: 0.55 against 0.71 s).
+constexpr Eigen::Index supernodal_diffusion_from = 15000;
+
+inline std::unique_ptr<Spd_solver> make_lagged_diffusion_factorization()
+{
+#ifdef CGAL_DEM_USE_CHOLMOD
+  return std::unique_ptr<Spd_solver>(new Size_dispatched_spd_solver(
+    make_spd_solver(Simplicial_ldlt_traits()), make_default_spd_solver(), supernodal_diffusion_from));
+#else
+  return make_spd_solver(Simplicial_ldlt_traits()); // Eigen has no supernodal factorization
+#endif
+}
+
 /// The solver of the engine's diffusion systems: by default warm-started
 /// preconditioned conjugate gradients (`Diffusion_pcg_solver`) whose lagged
-/// factorization is a simplicial LDL^T (rarely refactored but applied several
-/// times per iteration, and simplicial triangular solves are the cheapest);
-/// the user's `sparse_linear_solver` if one is given (then `tuning` is unused).
+/// factorization is `make_lagged_diffusion_factorization()` (rarely refactored
+/// but applied several times per iteration); the user's `sparse_linear_solver`
+/// if one is given (then `tuning` is unused).
 template <class NamedParameters>
 std::unique_ptr<Spd_solver> diffusion_solver_from_parameters(
   const NamedParameters& np, const Diffusion_pcg_solver::Tuning& tuning = Diffusion_pcg_solver::Tuning())
 {
   using CGAL::parameters::is_default_parameter;
   if constexpr(is_default_parameter<NamedParameters, internal_np::sparse_linear_solver_t>::value) {
-    std::unique_ptr<Diffusion_pcg_solver> pcg(new Diffusion_pcg_solver(make_spd_solver(Simplicial_ldlt_traits())));
+    std::unique_ptr<Diffusion_pcg_solver> pcg(new Diffusion_pcg_solver(make_lagged_diffusion_factorization()));
     pcg->tune(tuning);
     return pcg;
   }

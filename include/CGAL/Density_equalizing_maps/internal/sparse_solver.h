@@ -297,6 +297,45 @@ inline std::unique_ptr<Spd_solver> clone_with_fast_ordering(const Spd_solver& pr
   return s;
 }
 
+/// Two solvers and a size: systems of fewer than `large_from` unknowns go
+/// to `small`, the others to `large`. For the lagged factorization of the
+/// diffusion systems: a simplicial LDL^T is the cheapest below a few ten
+/// thousand unknowns (its triangular solves, applied several times per
+/// iteration, have no supernode overhead), but its factorization has no
+/// dense kernels and grows far faster than a supernodal one (1M faces:
+/// about 30 s against 2-3 s, benchmark/RESULTS.md).
+class Size_dispatched_spd_solver : public Spd_solver
+{
+public:
+  Size_dispatched_spd_solver(std::unique_ptr<Spd_solver> small, std::unique_ptr<Spd_solver> large,
+                             Eigen::Index large_from)
+    : m_small(std::move(small)), m_large(std::move(large)), m_large_from(large_from) {}
+
+  void set_ordering_effort(Ordering_effort effort) override
+  {
+    m_small->set_ordering_effort(effort);
+    m_large->set_ordering_effort(effort);
+  }
+  bool factor(const Sparse_matrix& A) override
+  {
+    m_active = A.rows() < m_large_from ? m_small.get() : m_large.get();
+    return m_active->factor(A);
+  }
+  bool solve(const Matrix& B, Matrix& X) override { return m_active && m_active->solve(B, X); }
+  std::unique_ptr<Spd_solver> clone() const override
+  {
+    return std::unique_ptr<Spd_solver>(
+      new Size_dispatched_spd_solver(m_small->clone(), m_large->clone(), m_large_from));
+  }
+  /// The solver that factored the last matrix (none before the first).
+  const Spd_solver* active() const { return m_active; }
+
+private:
+  std::unique_ptr<Spd_solver> m_small, m_large;
+  Eigen::Index m_large_from;
+  Spd_solver* m_active = nullptr;
+};
+
 /// Solver of the diffusion systems (A + dt L) rho+ = A rho of the
 /// density-equalizing engine, one per iteration on a slowly moving mesh:
 /// preconditioned conjugate gradients started from the linear extrapolation
