@@ -344,6 +344,75 @@ void solver_clones_keep_the_settings()
   check(r.fold_overs == 0, "spherical conformal map with a configured CG solver: 0 fold-overs");
 }
 
+// The factorization whose ordering puts a trailing set last (the spherical
+// conformal map's one factorization for two systems): it solves the whole
+// system, and the principal subsystem on the other unknowns with the same
+// factor, as a separate factorization of that subsystem does. Only the
+// package's default solver has it; a user's solver gets none (the map then
+// factors twice).
+void factorization_with_trailing_set_solves_both_systems()
+{
+  const int side = 30, n = side * side; // grid Laplacian plus a small mass: SPD
+  std::vector<Eigen::Triplet<double> > t;
+  for(int i = 0; i < side; ++i)
+    for(int j = 0; j < side; ++j) {
+      const int v = i * side + j;
+      t.emplace_back(v, v, 0.01);
+      for(int d = 0; d < 2; ++d) {
+        const int ni = i + (d == 0), nj = j + (d == 1);
+        if(ni >= side || nj >= side) continue;
+        const int u = ni * side + nj;
+        const double w = 1. + 0.1 * ((v * 7 + u) % 5);
+        t.emplace_back(v, v, w); t.emplace_back(u, u, w); t.emplace_back(v, u, -w); t.emplace_back(u, v, -w);
+      }
+    }
+  I::Sparse_matrix A(n, n);
+  A.setFromTriplets(t.begin(), t.end());
+  A.makeCompressed();
+  std::vector<char> trailing(n, 0);
+  for(int v = 0; v < n; ++v) trailing[v] = (v % 11 == 3) || (v / side >= side - 4); // scattered and a band
+  std::vector<int> leading;
+  for(int v = 0; v < n; ++v) if(!trailing[v]) leading.push_back(v);
+  const I::Matrix B = I::Matrix::Random(n, 3);
+
+#ifdef CGAL_DEM_USE_CHOLMOD
+  std::unique_ptr<I::Factorization_with_trailing_set> f =
+    I::factorization_with_trailing_set_like(*I::make_default_spd_solver());
+  check(f != nullptr, "the default solver has a factorization with a trailing set");
+  if(!f) return;
+  check(f->factor(A, trailing), "factorization with a trailing set succeeds");
+  I::Matrix X, XL;
+  check(f->solve(B, X) && (A * X - B).norm() <= 1e-10 * B.norm(), "it solves the whole system");
+  check(f->solve_leading(B, XL), "it solves the leading subsystem");
+  // the subsystem A_RR x_R = b_R factored on its own
+  I::Sparse_matrix ARR(I::Sparse_matrix::Index(leading.size()), I::Sparse_matrix::Index(leading.size()));
+  {
+    std::vector<int> position(n, -1);
+    for(std::size_t k = 0; k < leading.size(); ++k) position[leading[k]] = int(k);
+    std::vector<Eigen::Triplet<double> > r;
+    for(int c = 0; c < n; ++c)
+      for(I::Sparse_matrix::InnerIterator it(A, c); it; ++it)
+        if(position[it.row()] >= 0 && position[c] >= 0) r.emplace_back(position[it.row()], position[c], it.value());
+    ARR.setFromTriplets(r.begin(), r.end());
+  }
+  Eigen::SimplicialLDLT<I::Sparse_matrix> ldlt(ARR);
+  I::Matrix BR(I::Matrix::Index(leading.size()), 3);
+  for(std::size_t k = 0; k < leading.size(); ++k) BR.row(I::Matrix::Index(k)) = B.row(leading[k]);
+  const I::Matrix XR = ldlt.solve(BR);
+  double error = 0, trailing_part = 0;
+  for(std::size_t k = 0; k < leading.size(); ++k)
+    error = std::max(error, (XL.row(leading[k]) - XR.row(I::Matrix::Index(k))).norm());
+  for(int v = 0; v < n; ++v) if(trailing[v]) trailing_part = std::max(trailing_part, XL.row(v).norm());
+  check(error <= 1e-9 * XR.norm(), "the leading solve is the subsystem's solution (" + std::to_string(error) + ")");
+  check(trailing_part == 0, "the leading solve is 0 on the trailing set");
+  check(!f->factor(A, std::vector<char>(3, 0)), "a trailing set of the wrong size is refused");
+  check(!f->solve_leading(B, XL), "nothing is solved after a refused factorization");
+#endif
+  typedef CGAL::Eigen_solver_traits<Eigen::SimplicialLDLT<CGAL::Eigen_sparse_matrix<double>::EigenType> > Ldlt;
+  check(I::factorization_with_trailing_set_like(*I::make_spd_solver(Ldlt())) == nullptr,
+        "a user's solver has no factorization with a trailing set");
+}
+
 void mobius_validates_its_input()
 {
   Mesh m = bumpy(2);
@@ -382,6 +451,7 @@ int main()
   duplicate_landmarks_are_refused();
   radii_out_of_range_are_refused();
   solver_clones_keep_the_settings();
+  factorization_with_trailing_set_solves_both_systems();
   mobius_validates_its_input();
   return finish("test_failures");
 }

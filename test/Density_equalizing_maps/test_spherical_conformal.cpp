@@ -37,11 +37,12 @@ double max_distance(const Mesh& m, Point_map a, Point_map b)
 // mu_bound: bound on the mean |mu| of the conformal map; shared: the mesh is
 // one of the papers' (then the Moebius correction must strictly help);
 // solver_tolerance: how close the map with SimplicialLDLT must be to the
-// default solver's. FLASH pins the 10% of vertices nearest the south pole:
-// on a mesh with exact mirror symmetries (icosphere, ellipsoid) vertices of
-// equal height compete for the last pinned slot and rounding (hence the solver)
-// decides which is pinned, which moves the map by ~1e-4. Perturbing the
-// ellipsoid's vertices by 1e-9 brings both solvers to 5e-12 of each other.
+// default solver's. The default solver solves FLASH's two systems with one
+// factorization (its leading block serves the south step), SimplicialLDLT
+// factors the south system on its own: the maps agree only if that leading
+// solve is right. The south cap is chosen by distance along the mesh's edges,
+// ties broken by vertex index, so the solver does not decide it even on
+// meshes with exact mirror symmetries.
 double mean_abs_mu_of(Mesh m)
 {
   Point_map s = m.add_property_map<vertex_descriptor, Point>("v:sphere").first;
@@ -108,11 +109,11 @@ int main(int argc, char** argv)
   Stopwatch clock;
   {
     Mesh m = icosphere(4);
-    check_mesh(m, "icosphere(4)", 0.01, false, 1e-3);
+    check_mesh(m, "icosphere(4)", 0.01, false);
   }
   {
     Mesh m = ellipsoid(1, 1.5, 3, 4);
-    check_mesh(m, "ellipsoid 1:1.5:3", 0.03, false, 1e-3);
+    check_mesh(m, "ellipsoid 1:1.5:3", 0.03, false);
   }
   {
     Mesh m = bumpy(4);

@@ -297,6 +297,153 @@ inline std::unique_ptr<Spd_solver> clone_with_fast_ordering(const Spd_solver& pr
   return s;
 }
 
+/// A sparse Cholesky factorization of an SPD matrix A whose ordering puts a
+/// given set of unknowns, the *trailing* set T, last. Its leading block is
+/// then the Cholesky factor of the principal submatrix A_RR on the other
+/// unknowns R, so the one factorization solves both A x = b and A_RR x_R =
+/// b_R (forward solve, the T part zeroed, backward solve): a Dirichlet
+/// problem with T pinned costs two triangular solves instead of a second
+/// factorization. The spherical conformal map uses it for its two systems,
+/// which share the cotangent Laplacian (spherical_conformal.h).
+///
+/// CHOLMOD's supernodal LL^T with the constrained minimum-degree ordering
+/// (CAMD, T in the last constraint set) and no postordering of the
+/// elimination tree (which could move unknowns of R behind T). Only for the
+/// package's default solver: the factory returns null for any other one,
+/// and the caller factors twice through the user's solver.
+class Factorization_with_trailing_set
+{
+public:
+  virtual ~Factorization_with_trailing_set() = default;
+  /// Factors A (full symmetric storage, compressed) with `trailing` (one flag
+  /// per unknown) ordered last. False on failure or when the ordering did not
+  /// keep T last (then nothing may be solved).
+  virtual bool factor(const Sparse_matrix& A, const std::vector<char>& trailing) = 0;
+  /// A X = B.
+  virtual bool solve(const Matrix& B, Matrix& X) = 0;
+  /// A_RR X_R = B_R; the rows of T in B are ignored and are 0 in X.
+  virtual bool solve_leading(const Matrix& B, Matrix& X) = 0;
+};
+
+#ifdef CGAL_DEM_USE_CHOLMOD
+class Cholmod_factorization_with_trailing_set : public Factorization_with_trailing_set
+{
+public:
+  explicit Cholmod_factorization_with_trailing_set(double shift = 0) : m_shift(shift)
+  {
+    cholmod_start(&m_common);
+    m_common.nmethods = 1;
+    m_common.method[0].ordering = CHOLMOD_GIVEN;
+    m_common.postorder = 0;
+    m_common.supernodal = CHOLMOD_SUPERNODAL;
+    m_common.final_ll = 1;
+  }
+  ~Cholmod_factorization_with_trailing_set() override
+  {
+    if(m_factor) cholmod_free_factor(&m_factor, &m_common);
+    cholmod_finish(&m_common);
+  }
+  Cholmod_factorization_with_trailing_set(const Cholmod_factorization_with_trailing_set&) = delete;
+  Cholmod_factorization_with_trailing_set& operator=(const Cholmod_factorization_with_trailing_set&) = delete;
+
+  bool factor(const Sparse_matrix& A, const std::vector<char>& trailing) override
+  {
+    const Dynamic_openmp_threads dynamic_threads;
+    if(m_factor) cholmod_free_factor(&m_factor, &m_common);
+    m_leading = 0;
+    const int n = int(A.rows());
+    if(!A.isCompressed() || A.cols() != n || trailing.size() != std::size_t(n)) return false;
+    cholmod_sparse view = lower_view(A);
+    std::vector<int> member(std::size_t(n), 0), perm(std::size_t(n), 0);
+    for(int i = 0; i < n; ++i)
+      if(trailing[std::size_t(i)]) member[std::size_t(i)] = 1; else ++m_leading;
+    if(!cholmod_camd(&view, nullptr, 0, member.data(), perm.data(), &m_common)) return false;
+    m_factor = cholmod_analyze_p(&view, perm.data(), nullptr, 0, &m_common);
+    if(!m_factor || m_common.status != CHOLMOD_OK) return false;
+    // the ordering the factor uses must still have R first
+    const int* used = static_cast<const int*>(m_factor->Perm);
+    for(int k = 0; k < m_leading; ++k)
+      if(trailing[std::size_t(used[k])]) return fail();
+    double beta[2] = {m_shift, 0};
+    if(!cholmod_factorize_p(&view, beta, nullptr, 0, m_factor, &m_common) || m_common.status != CHOLMOD_OK ||
+       m_factor->minor != m_factor->n)
+      return fail();
+    return true;
+  }
+
+  bool solve(const Matrix& B, Matrix& X) override { return run({CHOLMOD_A}, B, X, false); }
+
+  bool solve_leading(const Matrix& B, Matrix& X) override
+  { return run({CHOLMOD_P, CHOLMOD_L, CHOLMOD_Lt, CHOLMOD_Pt}, B, X, true); }
+
+private:
+  bool fail()
+  {
+    if(m_factor) cholmod_free_factor(&m_factor, &m_common);
+    return false;
+  }
+
+  static cholmod_sparse lower_view(const Sparse_matrix& A)
+  {
+    cholmod_sparse v;
+    v.nrow = v.ncol = std::size_t(A.rows());
+    v.nzmax = std::size_t(A.nonZeros());
+    v.p = const_cast<int*>(A.outerIndexPtr());
+    v.i = const_cast<int*>(A.innerIndexPtr());
+    v.x = const_cast<double*>(A.valuePtr());
+    v.z = nullptr; v.nz = nullptr;
+    v.stype = -1; // the lower triangle is read
+    v.itype = CHOLMOD_INT; v.xtype = CHOLMOD_REAL; v.dtype = CHOLMOD_DOUBLE;
+    v.sorted = 1; v.packed = 1;
+    return v;
+  }
+
+  /// Applies the CHOLMOD solves `steps` in turn to B; with `leading`, the
+  /// permuted vector's trailing rows are zeroed between the triangular solves
+  /// (L y = P b restricted to R is y_R = L_RR^{-1} (P b)_R).
+  bool run(std::initializer_list<int> steps, const Matrix& B, Matrix& X, bool leading)
+  {
+    if(!m_factor) return false;
+    Matrix current = B;
+    for(int sys : steps) {
+      cholmod_dense in;
+      in.nrow = std::size_t(current.rows()); in.ncol = std::size_t(current.cols());
+      in.nzmax = in.nrow * in.ncol; in.d = in.nrow;
+      in.x = current.data(); in.z = nullptr;
+      in.xtype = CHOLMOD_REAL; in.dtype = CHOLMOD_DOUBLE;
+      cholmod_dense* out = cholmod_solve(sys, m_factor, &in, &m_common);
+      if(!out) return false;
+      current = Eigen::Map<const Matrix>(static_cast<const double*>(out->x), current.rows(), current.cols());
+      cholmod_free_dense(&out, &m_common);
+      if(leading && (sys == CHOLMOD_P || sys == CHOLMOD_L)) current.bottomRows(current.rows() - m_leading).setZero();
+    }
+    X.swap(current);
+    return X.allFinite();
+  }
+
+  cholmod_common m_common;
+  cholmod_factor* m_factor = nullptr;
+  double m_shift;
+  int m_leading = 0;
+};
+#endif
+
+/// The factorization above when `prototype` is the package's default solver
+/// (with its shift); null otherwise (a user's solver, or no CHOLMOD).
+inline std::unique_ptr<Factorization_with_trailing_set> factorization_with_trailing_set_like(const Spd_solver& prototype)
+{
+#ifdef CGAL_DEM_USE_CHOLMOD
+  typedef Eigen_traits_spd_solver<Default_sparse_solver_traits> Default_solver;
+  if(const Default_solver* d = dynamic_cast<const Default_solver*>(&prototype)) {
+    auto& eigen_solver = const_cast<Default_sparse_solver_traits&>(d->traits()).solver();
+    return std::unique_ptr<Factorization_with_trailing_set>(new Cholmod_factorization_with_trailing_set(
+      Eigen_solver_protected_settings<Default_sparse_solver_traits::Solver>::cholmod_shift(eigen_solver)));
+  }
+#endif
+  (void)prototype;
+  return nullptr;
+}
+
 /// Two solvers and a size: systems of fewer than `large_from` unknowns go
 /// to `small`, the others to `large`. For the lagged factorization of the
 /// diffusion systems: a simplicial LDL^T is the cheapest below a few ten
