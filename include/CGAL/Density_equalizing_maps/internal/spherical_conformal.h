@@ -352,6 +352,7 @@ inline Flash_result flash_spherical_map(const Matrix& X, const Index_matrix& F, 
   // like a second puncture (the tests' 4:1 bumpy cigar of 5,120 faces folds with it).
   begin_stage(stage, "south-chart LBS correction");
   bool solved = false;
+  std::size_t inverted = 0; // exact count on the map of the south step
   {
     const South_chart chart = south_chart_of(S, F, cap, turn_to_south_pole(S, F, cap));
     Matrix w;
@@ -359,8 +360,11 @@ inline Flash_result flash_spherical_map(const Matrix& X, const Index_matrix& F, 
              ((one_factorization && chart.pinned_is_cap &&
                south_solve_on_leading_block(L, F, t, chart, *one_factorization, w)) ||
               south_solve_factored(L, chart, *solver, w));
-    if(solved) lift_south_chart(w, chart, res);
-    solved = solved && count_inverted_faces_about_center(res.S, F) == 0;
+    if(solved) {
+      lift_south_chart(w, chart, res);
+      inverted = count_inverted_faces_about_center(res.S, F);
+      solved = inverted == 0;
+    }
   }
   one_factorization.reset(); // the factor dies before any other system
   if(!solved) {
@@ -371,6 +375,7 @@ inline Flash_result flash_spherical_map(const Matrix& X, const Index_matrix& F, 
       res.fallback = "the north step's map alone (the south-chart correction could not be solved)";
     }
     lift_south_chart(w, chart, res);
+    inverted = count_inverted_faces_about_center(res.S, F);
   }
   { Sparse_matrix none; L.swap(none); }
 
@@ -379,7 +384,7 @@ inline Flash_result flash_spherical_map(const Matrix& X, const Index_matrix& F, 
   // weights: an embedding) and move towards the conformal map with the
   // fold-over repair of the density engine: the folded faces of the step are
   // untangled locally, and the step is shortened if that cannot succeed.
-  if(count_inverted_faces_about_center(res.S, F) > 0) {
+  if(inverted > 0) {
     begin_stage(stage, "fold repair from the Tutte embedding (the harmonic map folded)");
     const Complex tutte_corners[3] = {Complex(1, 0), std::polar(1., 2 * M_PI / 3), std::polar(1., 4 * M_PI / 3)};
     std::unique_ptr<Spd_solver> s4 = clone_with_fast_ordering(prototype);
