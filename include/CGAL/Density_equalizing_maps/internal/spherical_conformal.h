@@ -238,6 +238,26 @@ inline void lift_south_chart(const Matrix& w, const South_chart& chart, Flash_re
   }
 }
 
+/// Which south cap FLASH pins (flash_spherical_map()).
+enum class South_cap_rule
+{
+  /// chosen_first from one_factorization_min_vertices on, the reference's below
+  by_size,
+  /// chosen before the north step, so that one factorization serves both steps
+  chosen_first,
+  /// the reference's: the lowest 10 % after the north step, a second factorization
+  reference
+};
+
+/// Below this many vertices FLASH keeps the reference's cap: a whole map then
+/// takes a few hundredths of a second, so the second factorization costs a
+/// few milliseconds, and the map is the paper's own. The density-equalizing
+/// runs that start from it, many of them shaped by fold repairs, depend on the
+/// start in detail: LSDEM's landmark error on a 642-vertex sphere falls by 41
+/// % and 21 % from landmark weight 0.5 to 5 to 20 from the reference's cap,
+/// by 55 % and 1 % from the other (benchmark/RESULTS.md, "One factorization for FLASH").
+constexpr Eigen::Index one_factorization_min_vertices = 20000;
+
 /// FLASH (ALGORITHMS.md section 3): the harmonic map of the mesh punctured at
 /// its most regular face onto the plane, balanced and lifted to the sphere
 /// (north step); then, in the south chart where the puncture sits at the
@@ -246,8 +266,8 @@ inline void lift_south_chart(const Matrix& w, const South_chart& chart, Flash_re
 /// system with the metric Beltrami coefficient, which *is* the cotangent
 /// Laplacian L (beltrami.h), so both steps have L's pattern.
 ///
-/// One departure from the reference, for speed: the cap is, where it serves,
-/// the 10 % of vertices farthest from the puncture along the mesh's edges,
+/// One departure from the reference, for speed, from
+/// one_factorization_min_vertices on: the cap is, where it serves, the 10 % of vertices farthest from the puncture along the mesh's edges,
 /// chosen before the north step (farthest_vertices_from_face()), with the
 /// south chart centred on its deepest vertex; the reference takes the 10 % of
 /// lowest height after the north step and the chart of the north step's south
@@ -264,7 +284,8 @@ inline void lift_south_chart(const Matrix& w, const South_chart& chart, Flash_re
 ///
 /// Falls back to a Tutte embedding when the cotangent harmonic map fails.
 inline Flash_result flash_spherical_map(const Matrix& X, const Index_matrix& F, const Spd_solver& prototype,
-                                        const Stage_notifier& stage = Stage_notifier())
+                                        const Stage_notifier& stage = Stage_notifier(),
+                                        South_cap_rule rule = South_cap_rule::by_size)
 {
   const Eigen::Index n = X.rows();
   Flash_result res;
@@ -276,14 +297,16 @@ inline Flash_result flash_spherical_map(const Matrix& X, const Index_matrix& F, 
                                   Complex(a.dot(b), a.cross(b).norm()) / a.squaredNorm()};
   const Face_block_assembler assembler(F, n);
   std::unique_ptr<Spd_solver> solver = clone_with_fast_ordering(prototype);
+  const bool cap_first = rule == South_cap_rule::chosen_first ||
+                         (rule == South_cap_rule::by_size && n >= one_factorization_min_vertices);
   std::unique_ptr<Factorization_with_trailing_set> one_factorization =
-    factorization_with_trailing_set_like(prototype);
+    cap_first ? factorization_with_trailing_set_like(prototype) : nullptr;
   begin_stage(stage, "harmonic map (cotangent Laplacian, sparse Cholesky)");
   // the m x 9 blocks die before the factorization, the memory peak
   Sparse_matrix L = assembler.assemble(cotangent_stiffness_blocks(X, F));
   const Eigen::Index cap_size = std::max<Eigen::Index>(static_cast<Eigen::Index>(std::llround(n / 10.)), 3);
-  const South_cap cap = farthest_vertices_from_face(X, L, F, t, cap_size);
-  std::vector<char> cap_and_puncture = cap.member;
+  const South_cap cap = cap_first ? farthest_vertices_from_face(X, L, F, t, cap_size) : South_cap();
+  std::vector<char> cap_and_puncture = cap_first ? cap.member : std::vector<char>(static_cast<std::size_t>(n), 0);
   for(int c = 0; c < 3; ++c) {
     if(cap_and_puncture[F(t, c)]) one_factorization.reset(); // a tiny mesh: the cap reaches the puncture
     cap_and_puncture[F(t, c)] = 1;
@@ -353,7 +376,7 @@ inline Flash_result flash_spherical_map(const Matrix& X, const Index_matrix& F, 
   begin_stage(stage, "south-chart LBS correction");
   bool solved = false;
   std::size_t inverted = 0; // exact count on the map of the south step
-  {
+  if(cap_first) {
     const South_chart chart = south_chart_of(S, F, cap, turn_to_south_pole(S, F, cap));
     Matrix w;
     solved = chart.P.allFinite() &&
