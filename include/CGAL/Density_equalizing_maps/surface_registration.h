@@ -191,7 +191,7 @@ inline Matrix sampled_mobius_area_correction(const Matrix& X, const Index_matrix
     [&](const Eigen::Vector3d& xi) {
       if(xi.head<2>().norm() > 1e3 || std::abs(xi[2]) > 50) return std::numeric_limits<double>::infinity();
       apply(xi, sample.vertices);
-      return mean_abs_log_area_ratio(sample.source_area, face_areas(q, sample.F));
+      return mean_abs_log_area_ratio(sample.source_area, sample.source_total, face_areas(q, sample.F));
     },
     Eigen::Vector3d::Zero(), Eigen::Vector3d(0.2, 0.2, 0.5), 400, 1e-8);
   std::vector<Eigen::Index> all(std::size_t(S.rows()));

@@ -22,6 +22,16 @@ namespace internal {
 
 typedef CGAL::Exact_predicates_inexact_constructions_kernel Epick;
 
+/// The rows of Y (n x 3) as Epick points, each converted once.
+inline std::vector<Epick::Point_3> epick_points_3(const Matrix& Y)
+{
+  std::vector<Epick::Point_3> P(static_cast<std::size_t>(Y.rows()));
+  parallel_for(Y.rows(), [&](Eigen::Index begin, Eigen::Index end) {
+    for(Eigen::Index i = begin; i < end; ++i) P[i] = Epick::Point_3(Y(i, 0), Y(i, 1), Y(i, 2));
+  });
+  return P;
+}
+
 /// Faces (i,j,k) of a map onto a star-shaped closed surface (sphere,
 /// ellipsoid) whose image is not positively oriented about `center`:
 /// orientation(center, f_i, f_j, f_k) != POSITIVE. The input mesh must be
@@ -29,10 +39,7 @@ typedef CGAL::Exact_predicates_inexact_constructions_kernel Epick;
 inline std::vector<Eigen::Index> inverted_faces_about_center(const Matrix& Y, const Index_matrix& F,
                                                               const Eigen::Vector3d& center = Eigen::Vector3d::Zero())
 {
-  std::vector<Epick::Point_3> P(static_cast<std::size_t>(Y.rows()));
-  parallel_for(Y.rows(), [&](Eigen::Index begin, Eigen::Index end) {
-    for(Eigen::Index i = begin; i < end; ++i) P[i] = Epick::Point_3(Y(i, 0), Y(i, 1), Y(i, 2));
-  });
+  const std::vector<Epick::Point_3> P = epick_points_3(Y);
   const Epick::Point_3 c(center.x(), center.y(), center.z());
   std::vector<char> inverted(static_cast<std::size_t>(F.rows()));
   parallel_for(F.rows(), [&](Eigen::Index begin, Eigen::Index end) {

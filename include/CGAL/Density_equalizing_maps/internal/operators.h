@@ -57,6 +57,7 @@ struct Face_sample
 {
   Index_matrix F;
   Vector source_area;
+  double source_total = 0; // the sum of source_area (parallel_sum()), once: the objectives divide by it
   std::vector<char> uses_vertex; // per vertex of the mesh
   std::vector<Eigen::Index> vertices; // increasing
 };
@@ -76,6 +77,7 @@ inline Face_sample face_sample(const Index_matrix& F, const Vector& source_area,
   }
   for(Eigen::Index i = 0; i < n; ++i)
     if(smp.uses_vertex[i]) smp.vertices.push_back(i);
+  smp.source_total = parallel_sum(smp.source_area.size(), [&](Eigen::Index k) { return smp.source_area[k]; });
   return smp;
 }
 

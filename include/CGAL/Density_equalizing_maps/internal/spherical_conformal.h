@@ -267,8 +267,8 @@ constexpr Eigen::Index one_factorization_min_vertices = 20000;
 /// Laplacian L (beltrami.h), so both steps have L's pattern.
 ///
 /// One departure from the reference, for speed, from
-/// one_factorization_min_vertices on: the cap is, where it serves, the 10 % of vertices farthest from the puncture along the mesh's edges,
-/// chosen before the north step (farthest_vertices_from_face()), with the
+/// one_factorization_min_vertices on: the cap is, where it serves, the 10 % of
+/// vertices farthest from the puncture along the mesh's edges, chosen before the north step (farthest_vertices_from_face()), with the
 /// south chart centred on its deepest vertex; the reference takes the 10 % of
 /// lowest height after the north step and the chart of the north step's south
 /// pole. Both caps lie where the north step's map is accurate; knowing the
@@ -467,11 +467,13 @@ inline Complex mobius_rotation_dilation(Complex z, Complex w0, double s)
   return mobius_rotation_scaling(z, w0, std::exp(s));
 }
 
-/// mean |log(normalized image area / normalized input area)| over faces with finite values.
-inline double mean_abs_log_area_ratio(const Vector& source_area, const Vector& image_area)
+/// mean |log(normalized image area / normalized input area)| over faces with
+/// finite values; `source_total` is the sum of source_area (a search
+/// evaluates many images against the same input: Face_sample::source_total).
+inline double mean_abs_log_area_ratio(const Vector& source_area, double source_total, const Vector& image_area)
 {
   const Eigen::Index m = source_area.size();
-  const double ss = parallel_sum(m, [&](Eigen::Index k) { return source_area[k]; });
+  const double ss = source_total;
   const double si = parallel_sum(m, [&](Eigen::Index k) { return image_area[k]; });
   // the sum of |log ratio| and the number of faces where it is finite (a
   // count held in a double is exact up to 2^53 faces)
@@ -480,6 +482,12 @@ inline double mean_abs_log_area_ratio(const Vector& source_area, const Vector& i
     if(std::isfinite(d)) { s[0] += std::abs(d); s[1] += 1.; }
   });
   return sum_count[1] > 0 ? sum_count[0] / sum_count[1] : std::numeric_limits<double>::infinity();
+}
+
+inline double mean_abs_log_area_ratio(const Vector& source_area, const Vector& image_area)
+{
+  const double total = parallel_sum(source_area.size(), [&](Eigen::Index k) { return source_area[k]; });
+  return mean_abs_log_area_ratio(source_area, total, image_area);
 }
 
 /// Nelder-Mead minimization in R^3 (the objective is non-smooth).
@@ -537,10 +545,9 @@ double fold_free_dilation_fraction(const Eigen::Vector3d& xi, const Index_matrix
 {
   auto oriented = [&](double t) {
     apply(Eigen::Vector3d(xi[0], xi[1], t * xi[2]));
-    const double turned = parallel_sum(F.rows(), [&](Eigen::Index k) {
-      return row3(q, F(k, 0)).dot(row3(q, F(k, 1)).cross(row3(q, F(k, 2)))) > 0 ? 0. : 1.;
-    });
-    return turned == 0;
+    return first_index_where(F.rows(), [&](Eigen::Index k) {
+             return !(row3(q, F(k, 0)).dot(row3(q, F(k, 1)).cross(row3(q, F(k, 2)))) > 0);
+           }) == F.rows();
   };
   if(oriented(1.)) return 1.;
   double lo = 0, hi = 1;
@@ -582,7 +589,7 @@ inline Matrix mobius_correction(const Vector& target_area, const Index_matrix& F
     return [&](const Eigen::Vector3d& xi) {
       if(xi.head<2>().norm() > 1e3 || std::abs(xi[2]) > 50) return std::numeric_limits<double>::infinity();
       apply(xi, smp.vertices);
-      return mean_abs_log_area_ratio(smp.source_area, face_areas(q, smp.F));
+      return mean_abs_log_area_ratio(smp.source_area, smp.source_total, face_areas(q, smp.F));
     };
   };
   const Face_sample all = face_sample(F, target_area, S.rows(), 1);

@@ -11,6 +11,7 @@
 
 #include <CGAL/Density_equalizing_maps/Map_report.h>
 #include <CGAL/Density_equalizing_maps/internal/mesh_arrays.h>
+#include <CGAL/Density_equalizing_maps/internal/fold_overs.h>
 #include <CGAL/Density_equalizing_maps/internal/parallel.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -158,11 +159,7 @@ inline Mesh_topology validate_closed_surface(const Matrix& X, const Index_matrix
   }
 
   // Degenerate faces, decided exactly (thin slivers are valid input).
-  typedef CGAL::Exact_predicates_inexact_constructions_kernel Epick;
-  std::vector<Epick::Point_3> P(static_cast<std::size_t>(nv));
-  parallel_for(nv, [&](Eigen::Index begin, Eigen::Index end) {
-    for(Eigen::Index i = begin; i < end; ++i) P[i] = Epick::Point_3(X(i, 0), X(i, 1), X(i, 2));
-  });
+  const std::vector<Epick::Point_3> P = epick_points_3(X);
   const Eigen::Index degenerate =
     first_index_where(nf, [&](Eigen::Index k) { return CGAL::collinear(P[F(k, 0)], P[F(k, 1)], P[F(k, 2)]); });
   if(degenerate < nf)
