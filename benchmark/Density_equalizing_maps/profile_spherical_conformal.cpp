@@ -8,10 +8,13 @@
 //
 // usage: profile_spherical_conformal MESH [R=5]
 
+#include <CGAL/Density_equalizing_maps/ellipsoidal_conformal_map.h>
 #include <CGAL/Density_equalizing_maps/spherical_conformal_map.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/IO/polygon_soup_io.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Surface_mesh.h>
 
 #include <sys/resource.h>
 
@@ -114,5 +117,45 @@ int main(int argc, char** argv)
   std::printf("  => spherical_conformal_map without Moebius ~ %.4f s wall (validation + flash + fold count)\n",
               t_validate + t_flash + t_folds);
   (void)t_factor_full; (void)t_factor_numeric; (void)t_mobius;
+  {
+    // the public function on a Surface_mesh, as `dem spherical-conformal` calls it
+    CGAL::Surface_mesh<Point> mesh;
+    CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(points, polygons, mesh);
+    auto out = mesh.add_property_map<CGAL::Surface_mesh<Point>::Vertex_index, Point>("v:out").first;
+    best_of("closed_surface_arrays (Surface_mesh)", R,
+            [&] { (void)DI::closed_surface_arrays(mesh, CGAL::parameters::default_values(), 2); });
+    best_of("spherical_conformal_map (public, Surface_mesh)", R,
+            [&] { (void)CGAL::Density_equalizing_maps::spherical_conformal_map(mesh, out); });
+  }
+
+  // FECM's stages after FLASH (default radii and poles, chart dilation searched)
+  std::printf("ellipsoidal conformal map (FECM) after FLASH:\n");
+  const DI::Principal_frame frame = DI::principal_frame(X);
+  const Eigen::Vector3d radii = frame.extent / frame.extent.mean();
+  const std::array<Eigen::Index, 3> poles = DI::default_pole_vertices(X, frame);
+  std::unique_ptr<DI::Ellipsoidal_mapper> mapper;
+  best_of("charts and pinned set (Ellipsoidal_mapper)", R,
+          [&] { mapper.reset(new DI::Ellipsoidal_mapper(X, F, poles, *solver, flash)); });
+  DI::Conformal_correction psi;
+  best_of("conformal correction psi (LBS: order, factor, solve)", R,
+          [&] { psi = mapper->conformal_correction(radii, 1.); });
+  // FECM's own FLASH keeps its factorization (when it served both of its
+  // steps): psi is factored on its ordering and symbolic analysis
+  const DI::Flash_result kept = DI::flash_spherical_map(X, F, *solver, {}, DI::South_cap_rule::by_size, true);
+  mapper.reset(new DI::Ellipsoidal_mapper(X, F, poles, *solver, kept));
+  best_of("  the same on FLASH's analysis (numeric, solve)", R,
+          [&] { psi = mapper->conformal_correction(radii, 1.); });
+  std::printf("  (psi factored on FLASH's analysis %zu times)\n", mapper->psi_refactorizations_on_flash_analysis());
+  std::unique_ptr<DI::Planar_point_locator> locator;
+  best_of("locator of psi's image", R,
+          [&] { locator.reset(new DI::Planar_point_locator(psi.image, mapper->chart().open_faces)); });
+  best_of("psi^-1 at every vertex", R,
+          [&] { (void)mapper->inverse_correction(*locator, psi, mapper->planar_chart()); });
+  const DI::Vector source_area = DI::face_areas(X, F);
+  DI::Matrix f;
+  best_of("evaluate_ellipsoidal_conformal (total)", R,
+          [&] { f = DI::evaluate_ellipsoidal_conformal(*mapper, radii, source_area, true).f; });
+  best_of("exact fold-over count of the ellipsoidal map", R,
+          [&] { (void)DI::count_inverted_faces_about_center(f, F); });
   return 0;
 }
