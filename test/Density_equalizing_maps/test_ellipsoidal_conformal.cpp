@@ -73,39 +73,8 @@ static Mesh bumpy_ellipsoid(int subdivisions)
   return dem_test::to_mesh(a);
 }
 
-// From one_factorization_min_vertices on, FLASH factors the Laplacian once,
-// and FECM factors psi's systems (which have the Laplacian's pattern) on that
-// ordering and symbolic analysis: psi must be the one an analysis of its own gives.
-static void check_psi_on_flash_analysis()
-{
-  dem_test::Arrays a = dem_test::bumpy_arrays(6, 0.12, 1.); // 40,962 vertices
-  a.X.col(0) *= 1.1;
-  a.X.col(1) *= 0.7;
-  a.X.col(2) *= 1.9;
-  CHECK(a.X.rows() >= I::one_factorization_min_vertices, "bumpy(6): above the one-factorization threshold");
-  const auto solver = I::make_default_spd_solver();
-  const I::Flash_result own = I::flash_spherical_map(a.X, a.F, *solver);
-  const I::Flash_result kept = I::flash_spherical_map(a.X, a.F, *solver, {}, I::South_cap_rule::by_size, true);
-  CHECK(!own.laplacian_factorization && kept.S == own.S, "bumpy(6): keeping FLASH's factorization keeps its map");
-  const I::Principal_frame frame = I::principal_frame(a.X);
-  const Eigen::Vector3d radii = frame.extent / frame.extent.mean();
-  const std::array<Eigen::Index, 3> poles = I::default_pole_vertices(a.X, frame);
-  const I::Ellipsoidal_mapper reference(a.X, a.F, poles, *solver, own), reusing(a.X, a.F, poles, *solver, kept);
-  const I::Conformal_correction p0 = reference.conformal_correction(radii), p1 = reusing.conformal_correction(radii);
-  const double diff = (p0.image - p1.image).cwiseAbs().maxCoeff() / p0.image.cwiseAbs().maxCoeff();
-  CHECK(diff <= 1e-9, "bumpy(6): psi on FLASH's analysis equals psi on its own (" + std::to_string(diff) + ")");
-#ifdef CGAL_DEM_USE_CHOLMOD
-  CHECK(reference.psi_refactorizations_on_flash_analysis() == 0 && reusing.psi_refactorizations_on_flash_analysis() == 1,
-        "bumpy(6): the default solver factors psi on FLASH's analysis");
-  const I::Ellipsoidal_mapper computing(a.X, a.F, poles, *solver); // FECM's own FLASH
-  (void)computing.conformal_correction(radii);
-  CHECK(computing.psi_refactorizations_on_flash_analysis() == 1, "bumpy(6): FECM's mapper keeps FLASH's analysis");
-#endif
-}
-
 static int generated_part()
 {
-  check_psi_on_flash_analysis();
   Mesh m = bumpy_ellipsoid(4);
   auto out = m.add_property_map<vertex_descriptor, Point>("v:ellipsoid", Point(0, 0, 0)).first;
   auto sph = m.add_property_map<vertex_descriptor, Point>("v:sphere", Point(0, 0, 0)).first;

@@ -405,36 +405,6 @@ void factorization_with_trailing_set_solves_both_systems()
   for(int v = 0; v < n; ++v) if(trailing[v]) trailing_part = std::max(trailing_part, XL.row(v).norm());
   check(error <= 1e-9 * XR.norm(), "the leading solve is the subsystem's solution (" + std::to_string(error) + ")");
   check(trailing_part == 0, "the leading solve is 0 on the trailing set");
-
-  // refactorization on the same analysis: another matrix of A's pattern
-  I::Sparse_matrix A2 = A;
-  for(int v = 0; v < n; ++v) A2.coeffRef(v, v) += 0.5 * (v % 3); // still symmetric, diagonally dominant
-  I::Matrix X2;
-  check(f->refactor(A2) && f->solve(B, X2) && (A2 * X2 - B).norm() <= 1e-10 * B.norm(),
-        "a matrix of the same pattern is refactored on the analysis and solved");
-  I::Sparse_matrix other(n, n); // another pattern: the diagonal alone
-  for(int v = 0; v < n; ++v) other.insert(v, v) = 2.;
-  other.makeCompressed();
-  check(!f->refactor(other) && f->solve(B, X2) && (A2 * X2 - B).norm() <= 1e-10 * B.norm(),
-        "a matrix of another pattern is refused and the factorization is kept");
-  {
-    // two solvers sharing the analysis: each solve uses its own matrix, even
-    // after the other refactored the shared factorization in between
-    std::shared_ptr<I::Factorization_with_trailing_set> shared = std::move(f);
-    I::Solver_on_analyzed_pattern first(shared, I::make_default_spd_solver()),
-      second(shared, I::make_default_spd_solver());
-    I::Matrix Y1, Y2, Y3;
-    const bool factored = first.factor(A) && second.factor(A2);
-    check(factored && first.solve(B, Y1) && (A * Y1 - B).norm() <= 1e-10 * B.norm() && second.solve(B, Y2) &&
-            (A2 * Y2 - B).norm() <= 1e-10 * B.norm(),
-          "solvers sharing an analysis each solve their own matrix");
-    check(first.refactorizations() == 2 && second.refactorizations() == 2,
-          "a solver refactors the shared analysis again after another used it");
-    check(first.factor(other) && first.solve(B, Y3) && (other * Y3 - B).norm() <= 1e-12 * B.norm() &&
-            first.refactorizations() == 2,
-          "another pattern goes to the solver's own factorization");
-    f.reset(new I::Cholmod_factorization_with_trailing_set());
-  }
   check(!f->factor(A, std::vector<char>(3, 0)), "a trailing set of the wrong size is refused");
   check(!f->solve_leading(B, XL), "nothing is solved after a refused factorization");
 #endif

@@ -422,8 +422,7 @@ Map_report ellipsoidal_quasiconformal_map(const TriangleMesh& tm, const Landmark
   const auto solver = internal::solver_from_parameters(np);
   const bool dilate = choose_parameter(get_parameter(np, internal_np::mobius_area_correction), true);
   const internal::Stage_notifier stage = internal::stage_notifier_from_parameters(np);
-  const internal::Flash_result flash =
-    internal::flash_spherical_map(a.X, a.F, *solver, stage, internal::South_cap_rule::by_size, true);
+  const internal::Flash_result flash = internal::flash_spherical_map(a.X, a.F, *solver, stage);
   internal::begin_stage(stage, "ellipsoidal charts and landmark-matching quasi-conformal map");
   if(!poles_given) { // orient the conformal map like the targets before pulling the landmarks
     const internal::Ellipsoidal_mapper first(a.X, a.F, poles, *solver, flash);

@@ -350,13 +350,10 @@ class Ellipsoidal_mapper
 public:
   Ellipsoidal_mapper(const Matrix& X, const Index_matrix& F, const std::array<Eigen::Index, 3>& poles,
                      const Spd_solver& prototype)
-    : Ellipsoidal_mapper(X, F, poles, prototype,
-                         flash_spherical_map(X, F, prototype, Stage_notifier(), South_cap_rule::by_size, true))
+    : Ellipsoidal_mapper(X, F, poles, prototype, flash_spherical_map(X, F, prototype))
   {}
 
-  /// With a FLASH map of (X, F) already computed (it does not depend on the
-  /// poles). When it kept its factorization, psi's systems, which have the
-  /// Laplacian's pattern, are factored on its ordering and symbolic analysis.
+  /// With a FLASH map of (X, F) already computed (it does not depend on the poles).
   Ellipsoidal_mapper(const Matrix& X, const Index_matrix& F, const std::array<Eigen::Index, 3>& poles,
                      const Spd_solver& prototype, const Flash_result& flash)
     : m_X(X), m_F(F), m_prototype(prototype.clone()), m_flash(flash)
@@ -364,11 +361,7 @@ public:
     m_chart = ellipsoidal_chart(X, F, poles, flash);
     m_P = to_planar(m_chart.p);
     m_open_assembler.build(m_chart.open_faces, X.rows());
-    std::unique_ptr<Spd_solver> own = clone_with_fast_ordering(prototype); // one factorization per radii
-    if(flash.laplacian_factorization)
-      m_psi_solver.reset(new Solver_on_analyzed_pattern(flash.laplacian_factorization, std::move(own)));
-    else
-      m_psi_solver = std::move(own);
+    m_psi_solver = clone_with_fast_ordering(prototype); // one factorization per radii
     breadth_first_vertex_order(F, X.rows(), m_order, m_parent);
     // Pinned set of psi (ALGORITHMS 5.7 [Rec]): the north face, the
     // max(3, min(50, floor(n/100))) vertices of largest |p|, and the corners of
@@ -402,12 +395,6 @@ public:
   const std::vector<Eigen::Index>& parent() const { return m_parent; }
   const Spd_solver& prototype() const { return *m_prototype; }
   const Flash_result& flash() const { return m_flash; }
-  /// How many of psi's systems were factored on FLASH's analysis (for tests).
-  std::size_t psi_refactorizations_on_flash_analysis() const
-  {
-    const auto* s = dynamic_cast<const Solver_on_analyzed_pattern*>(m_psi_solver.get());
-    return s ? s->refactorizations() : 0;
-  }
 
   /// psi_t = psi' o A for the chart dilated by t (see Conformal_correction):
   /// psi' = LBS(nu), nu the Beltrami coefficient of (P^N_abc)^{-1} o A^{-1},

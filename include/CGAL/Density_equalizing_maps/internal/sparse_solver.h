@@ -32,7 +32,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <memory>
 #include <type_traits>
 
@@ -324,34 +323,7 @@ public:
   virtual bool solve(const Matrix& B, Matrix& X) = 0;
   /// A_RR X_R = B_R; the rows of T in B are ignored and are 0 in X.
   virtual bool solve_leading(const Matrix& B, Matrix& X) = 0;
-  /// Factors a matrix with the sparsity pattern of the one `factor()` took,
-  /// with its ordering and symbolic analysis: the numeric factorization
-  /// alone. False when the pattern differs (nothing changes then) or the
-  /// numeric factorization fails (then nothing may be solved until the next
-  /// success).
-  virtual bool refactor(const Sparse_matrix& A) = 0;
-  /// The number of successful factorizations so far: a holder of a shared
-  /// factorization sees from it whether another has refactored it since.
-  std::size_t generation() const { return m_generation; }
-
-protected:
-  std::size_t m_generation = 0;
 };
-
-/// A fingerprint of a compressed sparsity pattern (size, column starts, row
-/// indices; 64-bit FNV-1a), to recognize the pattern a factorization was
-/// analyzed for without keeping a copy of it.
-inline std::uint64_t pattern_fingerprint(const Sparse_matrix& A)
-{
-  std::uint64_t h = 1469598103934665603ull;
-  auto mix = [&h](std::uint64_t v) { h = (h ^ v) * 1099511628211ull; };
-  mix(std::uint64_t(A.rows()));
-  mix(std::uint64_t(A.cols()));
-  mix(std::uint64_t(A.nonZeros()));
-  for(Eigen::Index c = 0; c <= A.outerSize(); ++c) mix(std::uint64_t(A.outerIndexPtr()[c]));
-  for(Eigen::Index p = 0; p < A.nonZeros(); ++p) mix(std::uint64_t(A.innerIndexPtr()[p]));
-  return h;
-}
 
 #ifdef CGAL_DEM_USE_CHOLMOD
 class Cholmod_factorization_with_trailing_set : public Factorization_with_trailing_set
@@ -379,7 +351,6 @@ public:
     const Dynamic_openmp_threads dynamic_threads;
     if(m_factor) cholmod_free_factor(&m_factor, &m_common);
     m_leading = 0;
-    m_numeric = false;
     const int n = int(A.rows());
     if(!A.isCompressed() || A.cols() != n || trailing.size() != std::size_t(n)) return false;
     cholmod_sparse view = lower_view(A);
@@ -395,38 +366,21 @@ public:
     const int* used = static_cast<const int*>(m_factor->Perm);
     for(int k = 0; k < m_leading; ++k)
       if(trailing[std::size_t(used[k])]) return fail();
-    m_pattern = pattern_fingerprint(A);
-    if(!numeric_factorization(A)) return fail();
+    double beta[2] = {m_shift, 0};
+    if(!cholmod_factorize_p(&view, beta, nullptr, 0, m_factor, &m_common) || m_common.status != CHOLMOD_OK ||
+       m_factor->minor != m_factor->n)
+      return fail();
     return true;
   }
 
-  bool refactor(const Sparse_matrix& A) override
-  {
-    if(!m_factor || !A.isCompressed() || pattern_fingerprint(A) != m_pattern) return false;
-    const Dynamic_openmp_threads dynamic_threads;
-    return numeric_factorization(A);
-  }
-
-  bool solve(const Matrix& B, Matrix& X) override { return m_numeric && run({CHOLMOD_A}, B, X, false); }
+  bool solve(const Matrix& B, Matrix& X) override { return run({CHOLMOD_A}, B, X, false); }
 
   bool solve_leading(const Matrix& B, Matrix& X) override
-  { return m_numeric && run({CHOLMOD_P, CHOLMOD_L, CHOLMOD_Lt, CHOLMOD_Pt}, B, X, true); }
+  { return run({CHOLMOD_P, CHOLMOD_L, CHOLMOD_Lt, CHOLMOD_Pt}, B, X, true); }
 
 private:
-  /// The numeric factorization of A on the analyzed pattern of m_factor.
-  bool numeric_factorization(const Sparse_matrix& A)
-  {
-    cholmod_sparse view = lower_view(A);
-    double beta[2] = {m_shift, 0};
-    m_numeric = cholmod_factorize_p(&view, beta, nullptr, 0, m_factor, &m_common) &&
-                m_common.status == CHOLMOD_OK && m_factor->minor == m_factor->n;
-    if(m_numeric) ++m_generation;
-    return m_numeric;
-  }
-
   bool fail()
   {
-    m_numeric = false;
     if(m_factor) cholmod_free_factor(&m_factor, &m_common);
     return false;
   }
@@ -508,8 +462,6 @@ private:
   cholmod_factor* m_factor = nullptr;
   double m_shift;
   int m_leading = 0;
-  std::uint64_t m_pattern = 0;
-  bool m_numeric = false;
 };
 #endif
 
@@ -528,51 +480,6 @@ inline std::unique_ptr<Factorization_with_trailing_set> factorization_with_trail
   (void)prototype;
   return nullptr;
 }
-
-/// A solver for systems that have the sparsity pattern an existing
-/// `Factorization_with_trailing_set` was analyzed for: they are factored by
-/// its numeric refactorization alone, with no new ordering or symbolic
-/// analysis; a matrix of any other pattern goes to `other`. The LBS systems
-/// of the ellipsoidal maps have the pattern of the mesh's Laplacian, which
-/// FLASH has just ordered and analyzed (on a 1M-face mesh the ordering and
-/// the analysis are about a third of a factorization). The factorization may
-/// be shared: a solve after another holder refactored it factors the
-/// matrix again (the matrix is kept by reference until the next `factor()`,
-/// as the `Spd_solver` contract says).
-class Solver_on_analyzed_pattern : public Spd_solver
-{
-public:
-  Solver_on_analyzed_pattern(std::shared_ptr<Factorization_with_trailing_set> analyzed,
-                             std::unique_ptr<Spd_solver> other)
-    : m_analyzed(std::move(analyzed)), m_other(std::move(other)) {}
-
-  bool factor(const Sparse_matrix& A) override
-  {
-    m_A = &A;
-    m_on_analyzed = m_analyzed->refactor(A);
-    if(!m_on_analyzed) return m_other->factor(A);
-    m_generation = m_analyzed->generation();
-    ++m_refactorizations;
-    return true;
-  }
-  bool solve(const Matrix& B, Matrix& X) override
-  {
-    if(m_on_analyzed && m_analyzed->generation() != m_generation && !factor(*m_A)) return false;
-    return m_on_analyzed ? m_analyzed->solve(B, X) : m_other->solve(B, X);
-  }
-  /// A solver of the other kind (a clone owns its factorization).
-  std::unique_ptr<Spd_solver> clone() const override { return m_other->clone(); }
-  void set_ordering_effort(Ordering_effort effort) override { m_other->set_ordering_effort(effort); }
-  /// How many matrices were factored on the analyzed pattern.
-  std::size_t refactorizations() const { return m_refactorizations; }
-
-private:
-  std::shared_ptr<Factorization_with_trailing_set> m_analyzed;
-  std::unique_ptr<Spd_solver> m_other;
-  const Sparse_matrix* m_A = nullptr;
-  bool m_on_analyzed = false;
-  std::size_t m_generation = 0, m_refactorizations = 0;
-};
 
 /// Two solvers and a size: systems of fewer than `large_from` unknowns go
 /// to `small`, the others to `large`. For the lagged factorization of the

@@ -15,7 +15,6 @@
 #include <CGAL/Density_equalizing_maps/internal/stages.h>
 
 #include <algorithm>
-#include <memory>
 #include <numeric>
 #include <queue>
 #include <sstream>
@@ -33,10 +32,6 @@ struct Flash_result
   bool tutte = false;
   std::string fallback;     // empty, or which fallback was taken (Map_report::fallback)
   std::size_t repairs = 0;  // Beltrami repairs of the fallback start
-  /// Asked for with `keep_factorization`: the one factorization of the
-  /// Laplacian's pattern (its ordering and symbolic analysis) when it served
-  /// both steps, for later systems of the same pattern; null otherwise.
-  std::shared_ptr<Factorization_with_trailing_set> laplacian_factorization;
 };
 
 /// The system of the harmonic map of the mesh punctured at face `t` onto the
@@ -287,15 +282,10 @@ constexpr Eigen::Index one_factorization_min_vertices = 20000;
 /// the south system is factored on its own, with the same choice of cap, so
 /// every solver gives the same map.
 ///
-/// With `keep_factorization`, a factorization that served both steps is
-/// handed out in the result (Flash_result::laplacian_factorization) instead
-/// of being freed: the ellipsoidal maps' LBS systems have its pattern.
-///
 /// Falls back to a Tutte embedding when the cotangent harmonic map fails.
 inline Flash_result flash_spherical_map(const Matrix& X, const Index_matrix& F, const Spd_solver& prototype,
                                         const Stage_notifier& stage = Stage_notifier(),
-                                        South_cap_rule rule = South_cap_rule::by_size,
-                                        bool keep_factorization = false)
+                                        South_cap_rule rule = South_cap_rule::by_size)
 {
   const Eigen::Index n = X.rows();
   Flash_result res;
@@ -399,7 +389,6 @@ inline Flash_result flash_spherical_map(const Matrix& X, const Index_matrix& F, 
       solved = inverted == 0;
     }
   }
-  if(keep_factorization && solved && one_factorization) res.laplacian_factorization = std::move(one_factorization);
   one_factorization.reset(); // the factor dies before any other system
   if(!solved) {
     const South_chart chart = south_chart_of(S, F, lowest_vertices(S, cap_size), Eigen::Matrix3d::Identity());
