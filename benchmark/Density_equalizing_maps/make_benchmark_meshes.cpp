@@ -11,8 +11,19 @@
 //                          (a star-shaped surface, hence an embedding)
 //   bumpy_torus_100k.off   genus 1: a 316 x 158 grid on a torus R = 3, r = 1
 //                          with radial bumps on the tube (99,856 faces)
+//   torus_100k.off         the same grid on the torus itself (no bumps): TDEM's
+//                          input lies on the torus
+//   bumpy_torus_100k.population.txt
+//                          one value per face of either torus, exp(cos u cos v)
+//                          at the face's grid centre (u around the axis, v
+//                          around the tube): a smooth population of ratio e^2
+//                          for TDEM
 //
 // usage: make_benchmark_meshes OUTPUT_DIR [frequency=71]
+//
+// Another frequency scales both meshes (the names stay): the sphere has
+// 20 f^2 faces, the torus grid is (316 f / 71) x (158 f / 71), so that 224
+// gives about 1M faces each and 448 about 4M.
 
 #include <algorithm>
 #include <array>
@@ -123,25 +134,39 @@ int main(int argc, char** argv)
   }
   // genus 1: bumpy torus
   {
-    const int nu = 316, nv = 158;
+    const int nv = std::max(3, int(std::lround(158. * n / 71))), nu = 2 * nv;
     const double R = 3, pi = std::acos(-1.);
-    std::vector<P3> V;
     std::vector<Tri> T;
-    for(int i = 0; i < nu; ++i)
-      for(int j = 0; j < nv; ++j) {
-        const double u = 2 * pi * i / nu, v = 2 * pi * j / nv;
-        const double r = 1 + 0.15 * std::sin(3 * u) * std::cos(2 * v);
-        V.push_back({(R + r * std::cos(v)) * std::cos(u), (R + r * std::cos(v)) * std::sin(u), r * std::sin(v)});
-      }
     auto id = [&](int i, int j) { return ((i + nu) % nu) * nv + (j + nv) % nv; };
     for(int i = 0; i < nu; ++i)
       for(int j = 0; j < nv; ++j) {
         T.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
         T.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
       }
-    const std::string f = dir + "/bumpy_torus_100k.off";
-    if(!write_off(f, V, T)) { std::cerr << "cannot write " << f << "\n"; return 3; }
-    std::cout << f << ": " << V.size() << " vertices, " << T.size() << " faces\n";
+    for(const double bump : {0.15, 0.}) {
+      std::vector<P3> V;
+      for(int i = 0; i < nu; ++i)
+        for(int j = 0; j < nv; ++j) {
+          const double u = 2 * pi * i / nu, v = 2 * pi * j / nv;
+          const double r = 1 + bump * std::sin(3 * u) * std::cos(2 * v);
+          V.push_back({(R + r * std::cos(v)) * std::cos(u), (R + r * std::cos(v)) * std::sin(u), r * std::sin(v)});
+        }
+      const std::string f = dir + (bump > 0 ? "/bumpy_torus_100k.off" : "/torus_100k.off");
+      if(!write_off(f, V, T)) { std::cerr << "cannot write " << f << "\n"; return 3; }
+      std::cout << f << ": " << V.size() << " vertices, " << T.size() << " faces\n";
+    }
+    const std::string fp = dir + "/bumpy_torus_100k.population.txt";
+    std::ofstream pop(fp);
+    pop.precision(17);
+    for(int i = 0; i < nu; ++i)
+      for(int j = 0; j < nv; ++j) {
+        // the two triangles of grid cell (i, j), centred at (i + 1/2, j + 1/2)
+        const double u = 2 * pi * (i + 0.5) / nu, v = 2 * pi * (j + 0.5) / nv;
+        const double value = std::exp(std::cos(u) * std::cos(v));
+        pop << value << "\n" << value << "\n";
+      }
+    if(!pop) { std::cerr << "cannot write " << fp << "\n"; return 3; }
+    std::cout << fp << ": one value per face, exp(cos u cos v)\n";
   }
   return 0;
 }
