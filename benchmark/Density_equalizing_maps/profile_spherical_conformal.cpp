@@ -4,7 +4,11 @@
 //
 // Where the time of the spherical conformal map goes: times the stages of
 // spherical_conformal_map() (validation, operators, the harmonic solve, the
-// south cap, the exact fold-over count) separately, minimum of R runs.
+// south cap, the exact fold-over count) separately, minimum of R runs; then
+// the public function on a Surface_mesh, and the stages FECM adds after FLASH
+// (charts, the conformal correction psi, point location, the dilation search).
+// The evaluate_ellipsoidal_conformal line reuses a mapper whose psi pattern is
+// already analysed: its factorization is the numeric one alone.
 //
 // usage: profile_spherical_conformal MESH [R=5]
 
