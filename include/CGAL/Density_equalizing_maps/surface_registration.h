@@ -175,31 +175,12 @@ inline void check_registrable_topology(long euler_source, long euler_target)
 /// only needs the Moebius freedom fixed the same way for both surfaces (the landmark
 /// correction and LSDEM move it afterwards), and skipping the polish changed the mean
 /// registration error by less than 0.01 % of the diagonal (benchmark/RESULTS.md, issue 18,
-/// second section). Never worse than no correction on all faces.
+/// second section). Never worse than no correction on all faces; the dilation is kept
+/// fold-free as in every Moebius correction (`internal::mobius_correction()`, whose first
+/// stage this is).
 inline Matrix sampled_mobius_area_correction(const Matrix& X, const Index_matrix& F, const Matrix& S)
 {
-  const Vector source_area = face_areas(X, F);
-  const Complex_vector z = north_chart(S);
-  Matrix q = S;
-  const auto apply = [&](const Eigen::Vector3d& xi, const std::vector<Eigen::Index>& vertices) {
-    const Complex w0(xi[0], xi[1]);
-    for(Eigen::Index i : vertices)
-      q.row(i) = inverse_north_stereographic(mobius_rotation_dilation(z[i], w0, xi[2])).transpose();
-  };
-  const Face_sample sample = face_sample(F, source_area, S.rows(), F.rows() / 4000);
-  const Eigen::Vector3d best = nelder_mead_3(
-    [&](const Eigen::Vector3d& xi) {
-      if(xi.head<2>().norm() > 1e3 || std::abs(xi[2]) > 50) return std::numeric_limits<double>::infinity();
-      apply(xi, sample.vertices);
-      return mean_abs_log_area_ratio(sample.source_area, sample.source_total, face_areas(q, sample.F));
-    },
-    Eigen::Vector3d::Zero(), Eigen::Vector3d(0.2, 0.2, 0.5), 400, 1e-8);
-  std::vector<Eigen::Index> all(std::size_t(S.rows()));
-  for(Eigen::Index i = 0; i < S.rows(); ++i) all[std::size_t(i)] = i;
-  apply(best, all);
-  const double before = mean_abs_log_area_ratio(source_area, face_areas(S, F));
-  const double after = mean_abs_log_area_ratio(source_area, face_areas(q, F));
-  return after <= before ? q : S;
+  return mobius_correction(face_areas(X, F), F, S, nullptr, nullptr, Mobius_search::sample_only);
 }
 
 /// The area-corrected spherical conformal map (the LSDEM starting map), checked fold-free.

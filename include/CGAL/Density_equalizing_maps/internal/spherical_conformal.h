@@ -268,8 +268,9 @@ constexpr Eigen::Index one_factorization_min_vertices = 20000;
 ///
 /// One departure from the reference, for speed, from
 /// one_factorization_min_vertices on: the cap is, where it serves, the 10 % of
-/// vertices farthest from the puncture along the mesh's edges, chosen before the north step (farthest_vertices_from_face()), with the
-/// south chart centred on its deepest vertex; the reference takes the 10 % of
+/// vertices farthest from the puncture along the mesh's edges, chosen before
+/// the north step (farthest_vertices_from_face()), with the south chart
+/// centred on its deepest vertex; the reference takes the 10 % of
 /// lowest height after the north step and the chart of the north step's south
 /// pole. Both caps lie where the north step's map is accurate; knowing the
 /// cap first lets one factorization of L, ordered with the cap last, serve
@@ -563,8 +564,15 @@ double fold_free_dilation_fraction(const Eigen::Vector3d& xi, const Index_matrix
 /// of a density-equalizing map (which a Moebius map brings closest to uniform
 /// density at no risk of folding: every face keeps its angles). Never worse
 /// than S itself on the objective. Returns the corrected map.
+///
+/// With `Mobius_search::sample_only` the search stops after its first stage,
+/// on the sample of about 4000 faces: for a start that only needs the Moebius
+/// freedom fixed, which later steps move anyway (a registration's starting maps).
+enum class Mobius_search { polished, sample_only };
+
 inline Matrix mobius_correction(const Vector& target_area, const Index_matrix& F, const Matrix& S,
-                                double* objective_before = nullptr, double* objective_after = nullptr)
+                                double* objective_before = nullptr, double* objective_after = nullptr,
+                                Mobius_search search = Mobius_search::polished)
 {
   const Complex_vector z = north_chart(S);
   Matrix q(S.rows(), 3);
@@ -594,12 +602,14 @@ inline Matrix mobius_correction(const Vector& target_area, const Index_matrix& F
   };
   const Face_sample all = face_sample(F, target_area, S.rows(), 1);
   const Face_sample coarse = face_sample(F, target_area, S.rows(), F.rows() / 4000);
-  const Face_sample fine = face_sample(F, target_area, S.rows(), F.rows() / 16000);
   const double before = objective_on(all)(Eigen::Vector3d::Zero());
   Eigen::Vector3d best =
     nelder_mead_3(objective_on(coarse), Eigen::Vector3d::Zero(), Eigen::Vector3d(0.2, 0.2, 0.5), 400, 1e-8);
-  best = nelder_mead_3(objective_on(fine), best, Eigen::Vector3d(0.02, 0.02, 0.05), 120, 1e-8);
-  best = nelder_mead_3(objective_on(all), best, Eigen::Vector3d(0.002, 0.002, 0.005), 40, 1e-8);
+  if(search == Mobius_search::polished) {
+    const Face_sample fine = face_sample(F, target_area, S.rows(), F.rows() / 16000);
+    best = nelder_mead_3(objective_on(fine), best, Eigen::Vector3d(0.02, 0.02, 0.05), 120, 1e-8);
+    best = nelder_mead_3(objective_on(all), best, Eigen::Vector3d(0.002, 0.002, 0.005), 40, 1e-8);
+  }
   best[2] *= fold_free_dilation_fraction(best, F, q, [&](const Eigen::Vector3d& xi) { apply(xi, all.vertices); });
   const double after = objective_on(all)(best);
   if(objective_before) *objective_before = before;
