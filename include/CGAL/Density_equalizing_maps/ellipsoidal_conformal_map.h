@@ -279,9 +279,8 @@ Map_report ellipsoidal_conformal_map(const TriangleMesh& tm, VertexPointOutMap e
     f = internal::evaluate_ellipsoidal_conformal(mapper, radii, internal::face_areas(a.X, a.F), dilate).f;
   }
   internal::begin_stage(stage, "fold check and repair");
-  internal::repair_folded_ellipsoidal_map(mapper.flash(), a.F, radii, *solver, f, report);
+  report.fold_overs = internal::repair_folded_ellipsoidal_map(mapper.flash(), a.F, radii, *solver, f, report);
   report.radii = {radii[0], radii[1], radii[2]};
-  report.fold_overs = internal::count_inverted_faces_about_center(f, a.F);
   if(report.fold_overs > 0)
     report.message += (report.message.empty() ? "" : "; ") + internal::crowding_note(a.X, a.F, f);
   internal::write_points(a, f, ellipsoid_map);
@@ -442,7 +441,7 @@ Map_report ellipsoidal_quasiconformal_map(const TriangleMesh& tm, const Landmark
   report.add_fallback(mapper.chart().fallback);
   report.repairs = mapper.chart().repairs;
   internal::begin_stage(stage, "fold check and repair");
-  internal::repair_folded_ellipsoidal_map(mapper.flash(), a.F, radii, *solver, res.f, report);
+  report.fold_overs = internal::repair_folded_ellipsoidal_map(mapper.flash(), a.F, radii, *solver, res.f, report);
   report.radii = {radii[0], radii[1], radii[2]};
   report.iterations = res.passes;
   report.termination = res.planar_bijective ? Termination::CONVERGED : Termination::MAXIMUM_ITERATIONS;
@@ -453,7 +452,6 @@ Map_report ellipsoidal_quasiconformal_map(const TriangleMesh& tm, const Landmark
   double err = 0;
   for(std::size_t k = 0; k < idx.size(); ++k) err += (internal::row_vector3(res.f, idx[k]) - q[k]).norm();
   report.landmark_error = err / double(idx.size());
-  report.fold_overs = internal::count_inverted_faces_about_center(res.f, a.F);
   internal::write_points(a, res.f, ellipsoid_map);
   return report;
 }

@@ -509,15 +509,16 @@ private:
 /// On tiny meshes (a tetrahedron, a 10-vertex bipyramid) the Moebius
 /// normalization of the poles moves the few vertices so far that the chordal
 /// faces no longer contain the centre: f folds although the chart maps are
-/// bijective. Says what it did in `report` (fallback, repairs).
-inline void repair_folded_ellipsoidal_map(const Flash_result& flash, const Index_matrix& F,
-                                          const Eigen::Vector3d& radii, const Spd_solver& prototype, Matrix& f,
-                                          Map_report& report)
+/// bijective. Says what it did in `report` (fallback, repairs) and returns
+/// the exact fold-over count of the map it leaves in f (the report's).
+inline std::size_t repair_folded_ellipsoidal_map(const Flash_result& flash, const Index_matrix& F,
+                                                 const Eigen::Vector3d& radii, const Spd_solver& prototype,
+                                                 Matrix& f, Map_report& report)
 {
   const std::size_t folds = count_inverted_faces_about_center(f, F);
-  if(folds == 0) return;
+  if(folds == 0) return 0;
   const Matrix start = Ellipsoid_domain::from_unit_sphere(flash.S, radii);
-  if(count_inverted_faces_about_center(start, F) != 0) return; // nothing fold-free to start from
+  if(count_inverted_faces_about_center(start, F) != 0) return folds; // nothing fold-free to start from
   Ellipsoid_domain domain(F, start, radii, 0.1, prototype);
   Step_statistics stats;
   Matrix moved;
@@ -527,6 +528,7 @@ inline void repair_folded_ellipsoidal_map(const Flash_result& flash, const Index
   report.add_fallback("the ellipsoidal map folded " + std::to_string(folds) +
                       " faces: replaced by the spherical conformal map scaled to the ellipsoid" +
                       (reached ? ", repaired towards the ellipsoidal map" : ""));
+  return count_inverted_faces_about_center(f, F);
 }
 
 /// (P^N_abc)^{-1} of every row of a chart (n x 2).
