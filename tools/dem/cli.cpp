@@ -135,7 +135,8 @@ std::string method_help_text(Method m)
     o << "  --time-step DT            default " << d.time_step << "\n"
       << "  --tolerance EPS           stop when the density error is below EPS (default " << d.tolerance << ")\n"
       << "  --max-iterations N        default " << d.max_iterations << "\n";
-  o << "  --population FILE|area    one value per face (default area)   --vertex-population FILE  one per vertex\n"
+  o << "  --population FILE|area    one value per face (default area)\n"
+       "  --vertex-population FILE  one value per vertex: face population = area x mean of its corners\n"
        "  --output FILE  --output-format F  --color-by darea|mu|density|population (default darea)\n"
        "  --output-input-colored FILE  --output-scale S  --metrics FILE  --quiet\n"
        "read: .off .obj .ply .stl .ts, FreeSurfer triangle surfaces, .gii\n"
