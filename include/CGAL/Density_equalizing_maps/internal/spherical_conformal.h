@@ -455,8 +455,8 @@ inline std::string crowding_note(const Matrix& X, const Index_matrix& F, const M
 /// Moebius map f(z) = e^s (z - w0) / (1 + conj(w0) z): a rotation of the
 /// sphere taking w0 to the south pole followed by a dilation. Up to a final
 /// rotation (which does not change areas) every Moebius map is of this form.
-/// The same with the dilation factor e^s given (a map applied to many points
-/// computes it once).
+/// The dilation factor e^s is given (a map applied to many points computes
+/// it once).
 inline Complex mobius_rotation_scaling(Complex z, Complex w0, double dilation)
 {
   if(!std::isfinite(z.real()) || !std::isfinite(z.imag()))
@@ -465,9 +465,18 @@ inline Complex mobius_rotation_scaling(Complex z, Complex w0, double dilation)
   return (dilation / std::norm(den)) * (num * std::conj(den)); // real arithmetic: no complex division
 }
 
-inline Complex mobius_rotation_dilation(Complex z, Complex w0, double s)
+/// The Moebius map with parameters xi (w0 = xi[0] + i xi[1], dilation
+/// e^xi[2]; mobius_rotation_scaling()) of the north-chart points z, back on
+/// the sphere: row i of `image` receives the image of z[i].
+template <class RowMatrix>
+void mobius_image(const Complex_vector& z, const Eigen::Vector3d& xi, RowMatrix& image)
 {
-  return mobius_rotation_scaling(z, w0, std::exp(s));
+  const Complex w0(xi[0], xi[1]);
+  const double dilation = std::exp(xi[2]);
+  parallel_for(z.size(), [&](Eigen::Index begin, Eigen::Index end) {
+    for(Eigen::Index i = begin; i < end; ++i)
+      image.row(i) = inverse_north_stereographic(mobius_rotation_scaling(z[i], w0, dilation)).transpose();
+  });
 }
 
 /// mean |log(image_area / image_total / target_share)| over the faces where
@@ -523,12 +532,7 @@ public:
   double operator()(const Eigen::Vector3d& xi)
   {
     if(xi.head<2>().norm() > 1e3 || std::abs(xi[2]) > 50) return std::numeric_limits<double>::infinity();
-    const Complex w0(xi[0], xi[1]);
-    const double dilation = std::exp(xi[2]);
-    parallel_for(m_z.size(), [&](Eigen::Index begin, Eigen::Index end) {
-      for(Eigen::Index j = begin; j < end; ++j)
-        m_image.row(j) = inverse_north_stereographic(mobius_rotation_scaling(m_z[j], w0, dilation)).transpose();
-    });
+    mobius_image(m_z, xi, m_image);
     const double total = parallel_sums<1>(m_F.rows(), [&](Eigen::Index k, std::array<double, 1>& s) {
       const Eigen::Vector3d a = m_image.row(m_F(k, 0)), b = m_image.row(m_F(k, 1)), c = m_image.row(m_F(k, 2));
       m_image_area[k] = 0.5 * (b - a).cross(c - a).norm();
@@ -631,14 +635,7 @@ inline Matrix mobius_correction(const Vector& target_area, const Index_matrix& F
   const Complex_vector z = north_chart(S);
   const Eigen::Index n = S.rows();
   Matrix q(n, 3);
-  auto apply = [&](const Eigen::Vector3d& xi) { // the map of all vertices, into q
-    const Complex w0(xi[0], xi[1]);
-    const double dilation = std::exp(xi[2]);
-    parallel_for(n, [&](Eigen::Index begin, Eigen::Index end) {
-      for(Eigen::Index i = begin; i < end; ++i)
-        q.row(i) = inverse_north_stereographic(mobius_rotation_scaling(z[i], w0, dilation)).transpose();
-    });
-  };
+  auto apply = [&](const Eigen::Vector3d& xi) { mobius_image(z, xi, q); }; // all vertices, into q
   // The objective is a mean over faces: the search runs on a sample of about
   // 4000 faces and is polished on a sample of about 16,000 (120 evaluations
   // there, which cost a sixth of 120 on all faces at 100,000 faces and a 60th
