@@ -32,6 +32,11 @@ function(dem_find_cholmod)
     IMPORTED_LOCATION "${CHOLMOD_LIBRARY}"
     INTERFACE_INCLUDE_DIRECTORIES "${CHOLMOD_INCLUDE_DIR}"
     INTERFACE_COMPILE_DEFINITIONS CGAL_DEM_USE_CHOLMOD)
+  # dlsym: whether the BLAS under CHOLMOD may be called from two threads
+  # (internal/bisection_cholesky.h); in libc itself from glibc 2.34 on
+  if(CMAKE_DL_LIBS)
+    set_property(TARGET Density_equalizing_maps::CHOLMOD APPEND PROPERTY INTERFACE_LINK_LIBRARIES ${CMAKE_DL_LIBS})
+  endif()
   find_package(OpenMP COMPONENTS CXX QUIET)
   if(OpenMP_CXX_FOUND AND OpenMP_CXX_LIBRARIES)
     set_property(TARGET Density_equalizing_maps::CHOLMOD APPEND PROPERTY

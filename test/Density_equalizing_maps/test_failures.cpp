@@ -299,8 +299,8 @@ void solver_clones_keep_the_settings()
   }
   // The diffusion solver's lagged factorization: simplicial LDL^T for small
   // systems, the supernodal default from supernodal_diffusion_from unknowns
-  // on (a simplicial factorization of 1M faces costs ~30 s); a clone keeps
-  // the rule, and both solve.
+  // on (a simplicial factorization of 1M faces costs ~30 s), split by a
+  // separator from bisection_diffusion_from on; a clone keeps the rule, and all solve.
   {
     typedef I::Eigen_traits_spd_solver<I::Simplicial_ldlt_traits> Simplicial;
     typedef I::Eigen_traits_spd_solver<DEM::Default_sparse_solver_traits> Supernodal;
@@ -319,17 +319,22 @@ void solver_clones_keep_the_settings()
     for(const I::Spd_solver* prototype : {lagged.get(), lagged_copy.get()}) {
       std::unique_ptr<I::Spd_solver> s = prototype->clone();
       auto& dispatch = dynamic_cast<I::Size_dispatched_spd_solver&>(*s);
-      for(Eigen::Index n : {Eigen::Index(30), I::supernodal_diffusion_from - 1, I::supernodal_diffusion_from}) {
+      for(Eigen::Index n : {Eigen::Index(30), I::supernodal_diffusion_from - 1, I::supernodal_diffusion_from,
+                            I::bisection_diffusion_from - 1, I::bisection_diffusion_from}) {
         const I::Sparse_matrix P = path(n);
         const I::Matrix rhs = I::Matrix::Ones(n, 2);
         I::Matrix sol;
         check(s->factor(P) && s->solve(rhs, sol) && (P * sol - rhs).norm() <= 1e-12 * rhs.norm(),
               "lagged diffusion factorization solves " + std::to_string(n) + " unknowns");
-        const bool supernodal = dynamic_cast<const Supernodal*>(dispatch.active()) != nullptr;
         const bool simplicial = dynamic_cast<const Simplicial*>(dispatch.active()) != nullptr;
-        check(n < I::supernodal_diffusion_from ? simplicial : supernodal,
-              "lagged diffusion factorization of " + std::to_string(n) + " unknowns is " +
-                (n < I::supernodal_diffusion_from ? "simplicial" : "supernodal"));
+        const auto* large = dynamic_cast<const I::Size_dispatched_spd_solver*>(dispatch.active());
+        const bool supernodal = large && dynamic_cast<const Supernodal*>(large->active()) != nullptr;
+        const bool bisection = large && dynamic_cast<const I::Bisection_cholesky*>(large->active()) != nullptr;
+        const char* expected = n < I::supernodal_diffusion_from  ? "simplicial"
+                               : n < I::bisection_diffusion_from ? "supernodal"
+                                                                 : "split by a separator";
+        check(n < I::supernodal_diffusion_from ? simplicial : n < I::bisection_diffusion_from ? supernodal : bisection,
+              "lagged diffusion factorization of " + std::to_string(n) + " unknowns is " + expected);
       }
     }
   }
@@ -413,6 +418,78 @@ void factorization_with_trailing_set_solves_both_systems()
         "a user's solver has no factorization with a trailing set");
 }
 
+/// The factorization split by a separator (bisection_cholesky.h) on a
+/// 50 x 50 grid Laplacian plus a small mass: the separator splits the graph,
+/// the solution is that of the whole system, sequential and parallel solves
+/// agree to the bit, a refactorization with new values solves the new
+/// system, and a disconnected pattern is factored whole.
+void bisection_cholesky_solves_and_refactors()
+{
+#ifdef CGAL_DEM_USE_CHOLMOD
+  const int side = 50, n = side * side;
+  auto grid = [&](double mass, double scale) {
+    std::vector<Eigen::Triplet<double> > t;
+    for(int v = 0; v < n; ++v) {
+      t.emplace_back(v, v, mass);
+      const int i = v / side, j = v % side;
+      for(int d = 0; d < 2; ++d) {
+        const int ni = i + (d == 0), nj = j + (d == 1);
+        if(ni >= side || nj >= side) continue;
+        const int u = ni * side + nj;
+        const double w = scale * (1. + 0.1 * ((v * 7 + u) % 5));
+        t.emplace_back(v, v, w); t.emplace_back(u, u, w); t.emplace_back(v, u, -w); t.emplace_back(u, v, -w);
+      }
+    }
+    I::Sparse_matrix A(n, n);
+    A.setFromTriplets(t.begin(), t.end());
+    A.makeCompressed();
+    return A;
+  };
+  const I::Sparse_matrix A = grid(0.01, 1.), A2 = grid(0.5, 3.);
+  std::vector<signed char> side_of;
+  check(I::level_structure_bisection(A, side_of), "bisection: the grid has a separator");
+  std::size_t separator = 0, coupled = 0, count[2] = {0, 0};
+  for(int c = 0; c < n; ++c) {
+    if(side_of[c] == 2) ++separator; else ++count[side_of[c]];
+    for(I::Sparse_matrix::InnerIterator it(A, c); it; ++it)
+      if(side_of[c] != 2 && side_of[it.row()] != 2 && side_of[c] != side_of[it.row()]) ++coupled;
+  }
+  check(coupled == 0, "bisection: no entry couples the two halves");
+  check(separator > 0 && separator <= std::size_t(2 * side) && count[0] > std::size_t(n / 4) && count[1] > std::size_t(n / 4),
+        "bisection: a short separator between halves of comparable size (" + std::to_string(separator) + ")");
+
+  const I::Matrix B = I::Matrix::Random(n, 3);
+  I::Matrix X[2];
+  for(int parallel = 0; parallel < 2; ++parallel) {
+    const I::Concurrency_scope scope(parallel == 1);
+    I::Bisection_cholesky solver;
+    check(solver.factor(A) && solver.separator_size() == separator, "bisection: factors the grid on the separator");
+    check(solver.solve(B, X[parallel]) && (A * X[parallel] - B).norm() <= 1e-10 * B.norm(),
+          "bisection: solves the whole system (" + std::string(parallel ? "parallel" : "sequential") + ")");
+    I::Matrix X2;
+    check(solver.factor(A2) && solver.solve(B, X2) && (A2 * X2 - B).norm() <= 1e-10 * B.norm(),
+          "bisection: a refactorization with new values solves the new system");
+  }
+  check(X[0] == X[1], "bisection: sequential and parallel solutions agree to the bit");
+
+  // two disconnected grids: no separator, factored whole
+  I::Sparse_matrix D(2 * n, 2 * n);
+  {
+    std::vector<Eigen::Triplet<double> > t;
+    for(int part = 0; part < 2; ++part)
+      for(int c = 0; c < n; ++c)
+        for(I::Sparse_matrix::InnerIterator it(A, c); it; ++it) t.emplace_back(part * n + it.row(), part * n + c, it.value());
+    D.setFromTriplets(t.begin(), t.end());
+    D.makeCompressed();
+  }
+  I::Bisection_cholesky whole;
+  const I::Matrix BD = I::Matrix::Random(2 * n, 2);
+  I::Matrix XD;
+  check(whole.factor(D) && whole.separator_size() == 0 && whole.solve(BD, XD) && (D * XD - BD).norm() <= 1e-10 * BD.norm(),
+        "bisection: a disconnected pattern is factored whole and solved");
+#endif
+}
+
 void mobius_validates_its_input()
 {
   Mesh m = bumpy(2);
@@ -452,6 +529,7 @@ int main()
   radii_out_of_range_are_refused();
   solver_clones_keep_the_settings();
   factorization_with_trailing_set_solves_both_systems();
+  bisection_cholesky_solves_and_refactors();
   mobius_validates_its_input();
   return finish("test_failures");
 }

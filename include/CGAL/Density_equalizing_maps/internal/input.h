@@ -11,6 +11,7 @@
 #include <CGAL/Density_equalizing_maps/parameters.h>
 #include <CGAL/Density_equalizing_maps/internal/measures.h>
 #include <CGAL/Density_equalizing_maps/internal/mesh_arrays.h>
+#include <CGAL/Density_equalizing_maps/internal/bisection_cholesky.h>
 #include <CGAL/Density_equalizing_maps/internal/sparse_solver.h>
 #include <CGAL/Density_equalizing_maps/internal/stages.h>
 #include <CGAL/Density_equalizing_maps/internal/validation.h>
@@ -97,11 +98,26 @@ std::unique_ptr<Spd_solver> loop_solver_from_parameters(const NamedParameters& n
 /// unknowns: 0.55 against 0.71 s).
 constexpr Eigen::Index supernodal_diffusion_from = 15000;
 
+/// From this many unknowns on, the lagged factorization is split in two
+/// halves by a separator (Bisection_cholesky): with parallel loops the
+/// halves are solved on two cores, and factored on two when the BLAS may be
+/// called from two threads at once. The preconditioner's triangular solves
+/// are most of a large flow's time (TDEM, 1M faces: 263 solves of about
+/// 0.1 s). Measured on 1M faces (benchmark/RESULTS.md, "The lagged
+/// factorization in two halves"): TDEM 42-44 -> 37 s with Debian's
+/// single-threaded OpenBLAS, 43-44 -> 33-34 s with its multithreaded build
+/// held to one thread per call. A solve on one thread costs about a quarter
+/// more, hence only the largest systems. (The direct maps' systems, factored
+/// once, gain nothing from it and would pass 1 KB per face at 1M faces.)
+constexpr Eigen::Index bisection_diffusion_from = 200000;
+
 inline std::unique_ptr<Spd_solver> make_lagged_diffusion_factorization()
 {
 #ifdef CGAL_DEM_USE_CHOLMOD
+  std::unique_ptr<Spd_solver> supernodal(new Size_dispatched_spd_solver(
+    make_default_spd_solver(), std::unique_ptr<Spd_solver>(new Bisection_cholesky()), bisection_diffusion_from));
   return std::unique_ptr<Spd_solver>(new Size_dispatched_spd_solver(
-    make_spd_solver(Simplicial_ldlt_traits()), make_default_spd_solver(), supernodal_diffusion_from));
+    make_spd_solver(Simplicial_ldlt_traits()), std::move(supernodal), supernodal_diffusion_from));
 #else
   return make_spd_solver(Simplicial_ldlt_traits()); // Eigen has no supernodal factorization
 #endif

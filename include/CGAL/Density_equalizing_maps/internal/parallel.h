@@ -30,6 +30,7 @@
 #ifdef CGAL_LINKED_WITH_TBB
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 #endif
 
 #include <CGAL/tags.h>
@@ -122,6 +123,20 @@ void parallel_for(Eigen::Index n, const Body& body, Eigen::Index grain = paralle
 
 /// body(b, begin, end) for the fixed blocks b = [begin, end) of
 /// parallel_block indices of [0, n), each block whole to one call.
+/// Runs `first` and `second`, in parallel when parallel loops were asked for.
+template <class First, class Second>
+void parallel_invoke(const First& first, const Second& second)
+{
+#ifdef CGAL_LINKED_WITH_TBB
+  if(parallel_loops_requested()) {
+    tbb::parallel_invoke(first, second);
+    return;
+  }
+#endif
+  first();
+  second();
+}
+
 template <class Body>
 void for_each_fixed_block(Eigen::Index n, const Body& body)
 {

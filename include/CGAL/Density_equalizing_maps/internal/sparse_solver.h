@@ -366,10 +366,8 @@ public:
     const int* used = static_cast<const int*>(m_factor->Perm);
     for(int k = 0; k < m_leading; ++k)
       if(trailing[std::size_t(used[k])]) return fail();
-    double beta[2] = {m_shift, 0};
-    if(!cholmod_factorize_p(&view, beta, nullptr, 0, m_factor, &m_common) || m_common.status != CHOLMOD_OK ||
-       m_factor->minor != m_factor->n)
-      return fail();
+    if(!numeric_factorization(A)) return fail();
+    m_trailing = trailing;
     return true;
   }
 
@@ -378,7 +376,132 @@ public:
   bool solve_leading(const Matrix& B, Matrix& X) override
   { return run({CHOLMOD_P, CHOLMOD_L, CHOLMOD_Lt, CHOLMOD_Pt}, B, X, true); }
 
+  /// The numeric factorization of A, whose sparsity pattern must be that of
+  /// the last successful `factor()`, on its ordering and symbolic analysis.
+  bool refactor(const Sparse_matrix& A)
+  {
+    if(!m_factor || A.rows() != Eigen::Index(m_factor->n)) return false;
+    const Dynamic_openmp_threads dynamic_threads;
+    if(numeric_factorization(A)) return true;
+    fail();
+    return false;
+  }
+
+  /// Y = L^{-1} P B: the forward half of a solve, in the factor's order of
+  /// the unknowns (T last). This and `backward()` run on the factor's
+  /// supernodes with Eigen's dense kernels, without CHOLMOD or the BLAS
+  /// (whose single-threaded builds must not be entered from two threads at
+  /// once), as fast as CHOLMOD's own solve (1M faces: 0.094 against
+  /// 0.087-0.100 s, benchmark/RESULTS.md): several threads may solve with
+  /// one factorization, or with several, at the same time.
+  bool forward(const Matrix& B, Matrix& Y) const
+  {
+    if(!m_factor || B.rows() != Eigen::Index(m_factor->n)) return false;
+    const int* perm = static_cast<const int*>(m_factor->Perm);
+    Y.resize(B.rows(), B.cols());
+    for(Eigen::Index k = 0; k < B.rows(); ++k) Y.row(k) = B.row(perm[k]);
+    const Supernodes L(*m_factor);
+    Vector update;
+    for(Eigen::Index c = 0; c < Y.cols(); ++c) { // column by column: matrix-vector kernels
+      double* y = Y.col(c).data();
+      for(std::size_t s = 0; s < L.count; ++s) {
+        const auto block = L.block(s);
+        const int width = L.width(s), below = int(block.rows()) - width;
+        Eigen::Map<Vector> y_s(y + L.first_column(s), width);
+        y_s = block.topRows(width).triangularView<Eigen::Lower>().solve(y_s);
+        if(below == 0) continue;
+        update.noalias() = block.bottomRows(below) * y_s;
+        const int* rows = L.rows_below(s);
+        for(int r = 0; r < below; ++r) y[rows[r]] -= update[r];
+      }
+    }
+    return Y.allFinite();
+  }
+
+  /// X = P^T L^{-T} Y: the backward half, from the factor's order.
+  bool backward(const Matrix& Y, Matrix& X) const
+  {
+    if(!m_factor || Y.rows() != Eigen::Index(m_factor->n)) return false;
+    Matrix Z = Y;
+    const Supernodes L(*m_factor);
+    Vector gathered;
+    for(Eigen::Index c = 0; c < Z.cols(); ++c) {
+      double* z = Z.col(c).data();
+      for(std::size_t s = L.count; s-- > 0;) {
+        const auto block = L.block(s);
+        const int width = L.width(s), below = int(block.rows()) - width;
+        Eigen::Map<Vector> z_s(z + L.first_column(s), width);
+        if(below > 0) {
+          gathered.resize(below);
+          const int* rows = L.rows_below(s);
+          for(int r = 0; r < below; ++r) gathered[r] = z[rows[r]];
+          z_s.noalias() -= block.bottomRows(below).transpose() * gathered;
+        }
+        z_s = block.topRows(width).transpose().triangularView<Eigen::Upper>().solve(z_s);
+      }
+    }
+    const int* perm = static_cast<const int*>(m_factor->Perm);
+    X.resize(Z.rows(), Z.cols());
+    for(Eigen::Index k = 0; k < Z.rows(); ++k) X.row(perm[k]) = Z.row(k);
+    return X.allFinite();
+  }
+
+  /// The supernodes of a supernodal LL^T factor: supernode s holds the
+  /// columns first_column(s) .. first_column(s) + width(s) - 1 as one dense
+  /// column-major block whose rows are those columns (the diagonal block,
+  /// lower triangular) followed by the rows `rows_below(s)`.
+  struct Supernodes
+  {
+    explicit Supernodes(const cholmod_factor& L)
+      : count(L.nsuper), super(static_cast<const int*>(L.super)), row_start(static_cast<const int*>(L.pi)),
+        value_start(static_cast<const int*>(L.px)), rows(static_cast<const int*>(L.s)),
+        values(static_cast<const double*>(L.x)) {}
+    int first_column(std::size_t s) const { return super[s]; }
+    int width(std::size_t s) const { return super[s + 1] - super[s]; }
+    Eigen::Map<const Matrix> block(std::size_t s) const
+    { return Eigen::Map<const Matrix>(values + value_start[s], row_start[s + 1] - row_start[s], width(s)); }
+    const int* rows_below(std::size_t s) const { return rows + row_start[s] + width(s); }
+
+    std::size_t count;
+    const int *super, *row_start, *value_start, *rows;
+    const double* values;
+  };
+
+  /// The trailing diagonal block D of the factor L (the columns and rows of
+  /// T, lower triangular, dense) and, for each of its positions, the index of
+  /// the unknown among T's (T's unknowns numbered in increasing order).
+  /// D D^T is the Schur complement of A onto T.
+  void trailing_block(Matrix& D, std::vector<int>& trailing_index) const
+  {
+    const int n = int(m_factor->n), t = n - m_leading;
+    D.setZero(t, t);
+    trailing_index.assign(static_cast<std::size_t>(t), 0);
+    std::vector<int> rank(static_cast<std::size_t>(n), -1); // unknown -> its index among T's
+    for(int i = 0, r = 0; i < n; ++i)
+      if(m_trailing[std::size_t(i)]) rank[std::size_t(i)] = r++;
+    const int* perm = static_cast<const int*>(m_factor->Perm);
+    for(int p = 0; p < t; ++p) trailing_index[std::size_t(p)] = rank[std::size_t(perm[m_leading + p])];
+    const Supernodes L(*m_factor);
+    for(std::size_t s = 0; s < L.count; ++s) {
+      const int first = L.first_column(s), end = first + L.width(s);
+      if(end <= m_leading) continue;
+      const auto block = L.block(s);
+      const int* rows = L.rows_below(s) - L.width(s); // the supernode's rows, its own columns first
+      for(int col = std::max(first, m_leading); col < end; ++col)
+        for(Eigen::Index r = col - first; r < block.rows(); ++r) // from the diagonal down
+          D(rows[r] - m_leading, col - m_leading) = block(r, col - first);
+    }
+  }
+
 private:
+  bool numeric_factorization(const Sparse_matrix& A)
+  {
+    cholmod_sparse view = lower_view(A);
+    double beta[2] = {m_shift, 0};
+    return cholmod_factorize_p(&view, beta, nullptr, 0, m_factor, &m_common) && m_common.status == CHOLMOD_OK &&
+           m_factor->minor == m_factor->n;
+  }
+
   bool fail()
   {
     if(m_factor) cholmod_free_factor(&m_factor, &m_common);
@@ -462,24 +585,9 @@ private:
   cholmod_factor* m_factor = nullptr;
   double m_shift;
   int m_leading = 0;
+  std::vector<char> m_trailing;
 };
 #endif
-
-/// The factorization above when `prototype` is the package's default solver
-/// (with its shift); null otherwise (a user's solver, or no CHOLMOD).
-inline std::unique_ptr<Factorization_with_trailing_set> factorization_with_trailing_set_like(const Spd_solver& prototype)
-{
-#ifdef CGAL_DEM_USE_CHOLMOD
-  typedef Eigen_traits_spd_solver<Default_sparse_solver_traits> Default_solver;
-  if(const Default_solver* d = dynamic_cast<const Default_solver*>(&prototype)) {
-    auto& eigen_solver = const_cast<Default_sparse_solver_traits&>(d->traits()).solver();
-    return std::unique_ptr<Factorization_with_trailing_set>(new Cholmod_factorization_with_trailing_set(
-      Eigen_solver_protected_settings<Default_sparse_solver_traits::Solver>::cholmod_shift(eigen_solver)));
-  }
-#endif
-  (void)prototype;
-  return nullptr;
-}
 
 /// Two solvers and a size: systems of fewer than `large_from` unknowns go
 /// to `small`, the others to `large`. For the lagged factorization of the
@@ -519,6 +627,22 @@ private:
   Eigen::Index m_large_from;
   Spd_solver* m_active = nullptr;
 };
+
+/// The factorization with a trailing set when `prototype` is the package's default solver
+/// (with its shift); null otherwise (a user's solver, or no CHOLMOD).
+inline std::unique_ptr<Factorization_with_trailing_set> factorization_with_trailing_set_like(const Spd_solver& prototype)
+{
+#ifdef CGAL_DEM_USE_CHOLMOD
+  typedef Eigen_traits_spd_solver<Default_sparse_solver_traits> Default_solver;
+  if(const Default_solver* d = dynamic_cast<const Default_solver*>(&prototype)) {
+    auto& eigen_solver = const_cast<Default_sparse_solver_traits&>(d->traits()).solver();
+    return std::unique_ptr<Factorization_with_trailing_set>(new Cholmod_factorization_with_trailing_set(
+      Eigen_solver_protected_settings<Default_sparse_solver_traits::Solver>::cholmod_shift(eigen_solver)));
+  }
+#endif
+  (void)prototype;
+  return nullptr;
+}
 
 /// Solver of the diffusion systems (A + dt L) rho+ = A rho of the
 /// density-equalizing engine, one per iteration on a slowly moving mesh:
