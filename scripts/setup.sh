@@ -19,7 +19,7 @@ JOBS="${DEM_JOBS:-$(nproc 2>/dev/null || echo 2)}"
 # The build dependencies. The documentation tools (doxygen, libjs-mathjax) are
 # installed by scripts/build_docs.sh, which is the only command that needs them.
 PACKAGES=(libcgal-dev libeigen3-dev libboost-dev libgmp-dev libmpfr-dev
-          libsuitesparse-dev libopenblas0-serial cmake g++ ccache
+          libsuitesparse-dev libopenblas0-pthread cmake g++ ccache
           zlib1g-dev   # zlib: GIfTI arrays in the GZipBase64Binary encoding
           libtbb-dev   # oneTBB: the parallel loops (concurrency_tag, dem --threads)
           nlohmann-json3-dev librsvg2-bin)  # dem cartogram: GeoJSON parsing, PNG pictures
