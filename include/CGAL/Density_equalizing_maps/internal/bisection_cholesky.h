@@ -145,10 +145,9 @@ public:
     m_factored = false;
     m_whole.reset();
     if(!A.isCompressed() || A.rows() != A.cols()) return false;
-    if(!same_pattern(A) && !analyze(A)) {
+    if(!m_pattern.matches(A) && !analyze(A)) {
       // no separator (a disconnected pattern, or too few levels): the same
       // system factored whole, by the default solver
-      m_side.clear();
       m_whole = make_default_spd_solver();
       return m_whole->factor(A);
     }
@@ -170,7 +169,7 @@ public:
   bool solve(const Matrix& B, Matrix& X) override
   {
     if(m_whole) return m_whole->solve(B, X);
-    if(!m_factored || B.rows() != Eigen::Index(m_side.size())) return false;
+    if(!m_factored || B.rows() != m_size) return false;
     const Eigen::Index k = B.cols(), s = Eigen::Index(m_separator.size());
     // forward solves; the separator's right-hand side b_S + sum_h D_h z_h
     std::array<Matrix, 2> forward;
@@ -247,18 +246,11 @@ private:
     }
   }
 
-  bool same_pattern(const Sparse_matrix& A) const
-  {
-    return !m_side.empty() && A.rows() == Eigen::Index(m_side.size()) && A.nonZeros() == Eigen::Index(m_inner.size()) &&
-           std::equal(A.outerIndexPtr(), A.outerIndexPtr() + A.outerSize() + 1, m_outer.begin()) &&
-           std::equal(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros(), m_inner.begin());
-  }
-
   /// The separator, the halves' matrices B_h (pattern and where each value
   /// comes from in A) and the separator's entries of A.
   bool analyze(const Sparse_matrix& A)
   {
-    m_side.clear();
+    m_pattern.forget();
     m_separator.clear();
     m_separator_entries.clear();
     std::vector<signed char> side;
@@ -311,9 +303,8 @@ private:
         if(i >= 0) m_separator_entries.push_back({Eigen::Index(i), Eigen::Index(j), k});
       }
     }
-    m_side.swap(side);
-    m_outer.assign(A.outerIndexPtr(), A.outerIndexPtr() + A.outerSize() + 1);
-    m_inner.assign(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros());
+    m_size = n;
+    m_pattern.remember(A);
     return true;
   }
 
@@ -347,8 +338,8 @@ private:
   }
 
   double m_shift;
-  std::vector<signed char> m_side;
-  std::vector<int> m_outer, m_inner;
+  Eigen::Index m_size = 0;     // unknowns of the analysed pattern
+  Sparsity_pattern m_pattern;
   std::vector<int> m_separator;
   std::vector<Separator_entry> m_separator_entries;
   std::array<std::unique_ptr<Half>, 2> m_half;

@@ -160,6 +160,33 @@ void copy_eigen_solver_settings(const Solver& from, Solver& to)
 #endif
 }
 
+/// The sparsity pattern of the last matrix a factorization analysed: a
+/// factorization whose next matrix has the same pattern keeps its ordering
+/// and symbolic analysis.
+class Sparsity_pattern
+{
+public:
+  bool matches(const Sparse_matrix& A) const
+  {
+    return m_known && A.rows() == m_rows && A.nonZeros() == Eigen::Index(m_inner.size()) &&
+           std::equal(A.outerIndexPtr(), A.outerIndexPtr() + A.outerSize() + 1, m_outer.begin()) &&
+           std::equal(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros(), m_inner.begin());
+  }
+  void remember(const Sparse_matrix& A)
+  {
+    m_rows = A.rows();
+    m_outer.assign(A.outerIndexPtr(), A.outerIndexPtr() + A.outerSize() + 1);
+    m_inner.assign(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros());
+    m_known = true;
+  }
+  void forget() { m_known = false; }
+
+private:
+  bool m_known = false;
+  Eigen::Index m_rows = 0;
+  std::vector<int> m_outer, m_inner;
+};
+
 /// Adapter for `CGAL::Eigen_solver_traits`: reuses the symbolic analysis while
 /// the sparsity pattern of the matrix does not change.
 template <class Traits>
@@ -171,16 +198,10 @@ public:
   {
     const Dynamic_openmp_threads dynamic_threads;
     auto& s = m_traits.solver();
-    const bool same_pattern = m_analyzed && A.rows() == m_rows && A.nonZeros() == m_nnz &&
-                              std::equal(A.outerIndexPtr(), A.outerIndexPtr() + A.outerSize() + 1, m_outer.begin()) &&
-                              std::equal(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros(), m_inner.begin());
-    if(!same_pattern) {
+    if(!m_pattern.matches(A)) {
       if(m_effort == Ordering_effort::fast) ask_for_minimum_degree_ordering(s);
       s.analyzePattern(A);
-      m_rows = A.rows(); m_nnz = A.nonZeros();
-      m_outer.assign(A.outerIndexPtr(), A.outerIndexPtr() + A.outerSize() + 1);
-      m_inner.assign(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros());
-      m_analyzed = true;
+      m_pattern.remember(A);
     }
     s.factorize(A);
     return s.info() == Eigen::Success;
@@ -232,9 +253,7 @@ private:
 
   Traits m_traits;
   Ordering_effort m_effort = Ordering_effort::thorough;
-  bool m_analyzed = false;
-  Eigen::Index m_rows = 0, m_nnz = 0;
-  std::vector<int> m_outer, m_inner;
+  Sparsity_pattern m_pattern;
 };
 
 /// Adapter for any other model of `SparseLinearAlgebraWithFactorTraits_d`.
