@@ -1,6 +1,7 @@
 // Timing of TDEM on the shared tdem_torus_* meshes and of the toroidal
 // parameterization of bob_genus1 (automatic tree-cotree cut and the authors'
 // cut), at the default settings. Usage: bench_toroidal [data_dir] [repeats]
+#include <CGAL/Density_equalizing_maps/internal/openblas.h>
 #include <CGAL/Density_equalizing_maps/toroidal_density_equalizing_map.h>
 #include <CGAL/Density_equalizing_maps/internal/measures.h>
 
@@ -67,6 +68,8 @@ static void measures(const Mesh& m, const Mesh::Property_map<vertex_descriptor, 
 
 int main(int argc, char** argv)
 {
+  // the BLAS kernels of this CPU, as dem runs them (internal/openblas.h)
+  CGAL::Density_equalizing_maps::internal::restart_with_openblas_kernels_of_this_cpu(argv);
   const std::string dir = argc > 1 ? argv[1] : "../shared/data";
   const int repeats = argc > 2 ? std::atoi(argv[2]) : 3;
   const char* names[] = {"tdem_torus_0", "tdem_torus_1", "tdem_torus_2", "tdem_torus_3", "tdem_torus_4",

@@ -14,6 +14,7 @@
 // AMD's fill is high); the package asks for AMD alone (sparse_solver.h).
 // Single runs: interleave several invocations on a busy machine.
 
+#include <CGAL/Density_equalizing_maps/internal/openblas.h>
 #include <CGAL/Density_equalizing_maps/internal/operators.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -33,6 +34,8 @@ namespace DI = CGAL::Density_equalizing_maps::internal;
 
 int main(int argc, char** argv)
 {
+  // the BLAS kernels of this CPU, as dem runs them (internal/openblas.h)
+  CGAL::Density_equalizing_maps::internal::restart_with_openblas_kernels_of_this_cpu(argv);
   if(argc < 2) {
     std::fprintf(stderr, "usage: cholmod_orderings MESH [default|amd|metis|nesdis ...]\n");
     return 2;

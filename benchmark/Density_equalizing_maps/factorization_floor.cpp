@@ -17,6 +17,7 @@
 // (Ordering_effort::fast: on large meshes CHOLMOD's default also tries METIS).
 // benchmark/floor_table.py divides each method's time by these.
 
+#include <CGAL/Density_equalizing_maps/internal/openblas.h>
 #include <CGAL/Density_equalizing_maps/internal/mesh_arrays.h>
 #include <CGAL/Density_equalizing_maps/internal/operators.h>
 #include <CGAL/Density_equalizing_maps/internal/sparse_solver.h>
@@ -59,6 +60,8 @@ DI::Sparse_matrix pinned_laplacian(const DI::Sparse_matrix& L)
 
 int main(int argc, char** argv)
 {
+  // the BLAS kernels of this CPU, as dem runs them (internal/openblas.h)
+  CGAL::Density_equalizing_maps::internal::restart_with_openblas_kernels_of_this_cpu(argv);
   if(argc < 2) {
     std::fprintf(stderr, "usage: factorization_floor MESH [repeats=5]\n");
     return 2;

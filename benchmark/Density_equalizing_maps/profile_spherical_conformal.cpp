@@ -12,6 +12,7 @@
 //
 // usage: profile_spherical_conformal MESH [R=5]
 
+#include <CGAL/Density_equalizing_maps/internal/openblas.h>
 #include <CGAL/Density_equalizing_maps/ellipsoidal_conformal_map.h>
 #include <CGAL/Density_equalizing_maps/spherical_conformal_map.h>
 
@@ -65,6 +66,8 @@ double best_of(const char* name, int repeats, const std::function<void()>& f)
 
 int main(int argc, char** argv)
 {
+  // the BLAS kernels of this CPU, as dem runs them (internal/openblas.h)
+  CGAL::Density_equalizing_maps::internal::restart_with_openblas_kernels_of_this_cpu(argv);
   if(argc < 2) { std::fprintf(stderr, "usage: profile_spherical_conformal MESH [R=5]\n"); return 2; }
   const int R = argc > 2 ? std::max(1, std::atoi(argv[2])) : 5;
   std::vector<Point> points;

@@ -165,6 +165,27 @@ int main()
   const std::string metrics = (tmp_dir / "metrics.json").string();
   const std::string output = (tmp_dir / "out.off").string();
 
+  // --- dem --version names OpenBLAS's kernels. On a CPU with AVX2 and FMA they
+  // are never ones without AVX: dem starts again with this CPU's kernels when
+  // OpenBLAS fell back for a model it does not know (internal/openblas.h),
+  // unless OPENBLAS_CORETYPE was set by the caller.
+  {
+    Result r = dem("--version");
+    expect(r, 0, "dem --version");
+    const std::string key = "OpenBLAS kernels: ";
+    const std::size_t at = r.out.find(key);
+#if (defined(__x86_64__) || defined(__i386__)) && defined(__GNUC__)
+    __builtin_cpu_init();
+    if(at != std::string::npos && !std::getenv("OPENBLAS_CORETYPE") && __builtin_cpu_supports("avx2") &&
+       __builtin_cpu_supports("fma")) {
+      std::string kernels = r.out.substr(at + key.size());
+      kernels = kernels.substr(0, kernels.find_first_of(" \n"));
+      for(const char* old : {"Prescott", "Core2", "Penryn", "Dunnington", "Nehalem", "Atom"})
+        check(kernels != old, "dem runs OpenBLAS's kernels of this CPU, not " + kernels);
+    }
+#endif
+  }
+
   // --- a valid run: output, metrics, summary line
   {
     Result r = dem("spherical-conformal \"" + sphere_off + "\" --output \"" + output + "\" --metrics \"" + metrics + "\"");

@@ -6,6 +6,7 @@
 #include "commands.h"
 
 #include <CGAL/Density_equalizing_maps/IO/sidecar_files.h>
+#include <CGAL/Density_equalizing_maps/internal/openblas.h>
 #include <CGAL/Density_equalizing_maps/version.h>
 
 #include <sys/resource.h> // getrusage
@@ -28,7 +29,8 @@ double process_cpu_seconds()
   return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
 }
 
-/// The package version (version.h) and the build's default sparse solver.
+/// The package version (version.h), the build's default sparse solver and,
+/// under OpenBLAS, the kernels it runs (internal/openblas.h).
 std::string version_text()
 {
 #ifdef CGAL_DEM_USE_CHOLMOD
@@ -36,7 +38,9 @@ std::string version_text()
 #else
   const char* solver = "Eigen SimplicialLDLT";
 #endif
-  return std::string("dem (Density_equalizing_maps) ") + CGAL_DEM_VERSION_STR + ", sparse solver: " + solver;
+  const std::string kernels = CGAL::Density_equalizing_maps::internal::openblas_core_name();
+  return std::string("dem (Density_equalizing_maps) ") + CGAL_DEM_VERSION_STR + ", sparse solver: " + solver +
+         (kernels.empty() ? std::string() : ", OpenBLAS kernels: " + kernels);
 }
 
 std::string usage_text()
@@ -74,6 +78,8 @@ std::string usage_text()
     "output formats (--output, by extension): .ply with per-face population, density_ratio, log_area_ratio,\n"
     "  abs_mu and colours; .vtk/.vtp with the same cell data; .obj with texture coordinates; .gii;\n"
     "  FreeSurfer (no extension, lh.* / rh.*, or --output-format freesurfer); .off .stl .ts (positions)\n"
+    "environment: OPENBLAS_CORETYPE names OpenBLAS's kernels; unset, dem sets it and starts again when\n"
+    "  OpenBLAS does not know this CPU and fell back to kernels without AVX (e.g. 0.3.21 on recent Xeons)\n"
     "exit status: 0 done; 2 usage error (also: unsupported output format, an output that is an input);\n"
     "             3 invalid input (also: an output directory that is missing or not writable);\n"
     "             4 the method failed: fold-overs left, stalled, or a numerical failure (says which;\n"

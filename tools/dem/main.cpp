@@ -12,6 +12,8 @@
 #include "cli.h"
 #include "commands.h"
 
+#include <CGAL/Density_equalizing_maps/internal/openblas.h>
+
 #ifdef CGAL_LINKED_WITH_TBB
 #include <tbb/global_control.h>
 #endif
@@ -39,6 +41,11 @@ const std::vector<Application>& applications()
 int main(int argc, char** argv)
 {
   using namespace dem_cli;
+  // OpenBLAS chose its kernels when it was loaded: an older build runs SSE3
+  // kernels on a recent CPU it does not know (internal/openblas.h), and the
+  // factorizations take about 1.5x as long. Unless OPENBLAS_CORETYPE is set,
+  // dem then sets it to this CPU's kernels and starts again.
+  CGAL::Density_equalizing_maps::internal::restart_with_openblas_kernels_of_this_cpu(argv);
   std::vector<std::string> args(argv + 1, argv + argc);
   if(args.empty()) { std::cerr << usage_text(); return 2; }
   // --threads N, for every subcommand: the threads of the parallel loops (the

@@ -28,18 +28,14 @@
 // from two threads at once. The arithmetic is the same either way, so the
 // solution does not depend on the number of threads.
 
+#include <CGAL/Density_equalizing_maps/internal/openblas.h>
 #include <CGAL/Density_equalizing_maps/internal/parallel.h>
 #include <CGAL/Density_equalizing_maps/internal/sparse_solver.h>
 
 #include <Eigen/Cholesky>
 
-#if defined(CGAL_DEM_USE_CHOLMOD) && defined(__unix__)
-#include <dlfcn.h>
-#endif
-
 #include <algorithm>
 #include <array>
-#include <cstring>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -101,31 +97,6 @@ inline bool level_structure_bisection(const Sparse_matrix& A, std::vector<signed
         if(level[std::size_t(neighbour[k])] == middle + 1) { side[std::size_t(v)] = 2; break; }
   }
   return true;
-}
-
-/// Whether the BLAS may be called from two threads at once. OpenBLAS built
-/// single-threaded without locking (Debian's libopenblas0-serial reports
-/// "SINGLE_THREADED") shares its work buffers between calls: concurrent
-/// CHOLMOD factorizations on it were seen to fail (benchmark/RESULTS.md). A
-/// multithreaded OpenBLAS that already runs its kernels on several threads
-/// would be oversubscribed. Other BLAS libraries keep no shared state.
-inline bool blas_allows_two_concurrent_calls()
-{
-#if defined(CGAL_DEM_USE_CHOLMOD) && defined(__unix__)
-  static const bool allowed = [] {
-    typedef char* (*Config)();
-    typedef int (*Threads)();
-    Config config = reinterpret_cast<Config>(dlsym(RTLD_DEFAULT, "openblas_get_config"));
-    if(!config) return true;
-    const char* text = config();
-    if(!text || std::strstr(text, "SINGLE_THREADED")) return false;
-    Threads threads = reinterpret_cast<Threads>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
-    return threads && threads() == 1;
-  }();
-  return allowed;
-#else
-  return false;
-#endif
 }
 
 #ifdef CGAL_DEM_USE_CHOLMOD
