@@ -706,6 +706,13 @@ public:
     int refactor_steps = 0;
   };
 
+  /// CG steps allowed to one solve preconditioned by a factorization. It
+  /// needs a handful (the exact factorization of the matrix itself one or
+  /// two); one that needs more is stale, and is redone (run()), or broken,
+  /// and the solve fails rather than running for minutes (a million
+  /// unknowns: 0.1 s a step, and Jacobi's budget would allow 500,000 steps).
+  static constexpr int factorization_step_budget = 100;
+
   explicit Diffusion_pcg_solver(std::unique_ptr<Spd_solver> direct, Eigen::Index jacobi_below = 4000,
                                 double tolerance = 1e-8, int refactor_iterations = 12)
     : m_direct(std::move(direct)), m_jacobi_below(jacobi_below), m_tolerance(tolerance),
@@ -823,7 +830,8 @@ private:
     Vector& p = m_p;
     p = z;
     double rz = r.dot(z);
-    const int budget = std::max<int>(1000, static_cast<int>(A.rows()));
+    const bool jacobi = m_inverse_diagonal.size() == A.rows();
+    const int budget = jacobi ? std::max<int>(1000, static_cast<int>(A.rows())) : factorization_step_budget;
     for(int k = 1; k <= budget; ++k) {
       product(p, Ap);
       const double alpha = rz / p.dot(Ap);
