@@ -140,7 +140,7 @@ public:
   bool solve(const Matrix& B, Matrix& X) override
   {
     if(m_whole) return m_whole->solve(B, X);
-    if(!m_factored || B.rows() != m_size) return false;
+    if(!m_factored || B.rows() != m_pattern.rows()) return false;
     const Eigen::Index k = B.cols(), s = Eigen::Index(m_separator.size());
     // forward solves; the separator's right-hand side b_S + sum_h D_h z_h
     std::array<Matrix, 2> forward;
@@ -274,7 +274,6 @@ private:
         if(i >= 0) m_separator_entries.push_back({Eigen::Index(i), Eigen::Index(j), k});
       }
     }
-    m_size = n;
     m_pattern.remember(A);
     return true;
   }
@@ -309,7 +308,6 @@ private:
   }
 
   double m_shift;
-  Eigen::Index m_size = 0;     // unknowns of the analysed pattern
   Sparsity_pattern m_pattern;
   std::vector<int> m_separator;
   std::vector<Separator_entry> m_separator_entries;

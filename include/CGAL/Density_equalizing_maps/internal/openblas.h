@@ -53,17 +53,22 @@ inline std::string openblas_core_name()
   return std::string();
 }
 
+/// Whether OpenBLAS's kernels `core` are of a CPU without AVX (those it
+/// falls back to for a model it does not know).
+inline bool openblas_core_without_avx(const std::string& core)
+{
+  for(const char* name : {"Prescott", "Core2", "Penryn", "Dunnington", "Nehalem", "Atom"})
+    if(core == name) return true;
+  return false;
+}
+
 /// The OpenBLAS kernels this CPU can run when the loaded OpenBLAS runs
 /// kernels without AVX (it fell back for an unknown model) and the CPU has
 /// AVX-512 ("SkylakeX") or AVX2 with FMA ("Haswell"); null otherwise.
 inline const char* better_openblas_core_for_this_cpu()
 {
 #if defined(CGAL_DEM_USE_CHOLMOD) && defined(__unix__) && (defined(__x86_64__) || defined(__i386__)) && defined(__GNUC__)
-  const std::string core = openblas_core_name();
-  static const char* const without_avx[] = {"Prescott", "Core2", "Penryn", "Dunnington", "Nehalem", "Atom"};
-  bool fell_back = false;
-  for(const char* name : without_avx) fell_back = fell_back || core == name;
-  if(!fell_back) return nullptr;
+  if(!openblas_core_without_avx(openblas_core_name())) return nullptr;
   __builtin_cpu_init();
   if(__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512bw") &&
      __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512cd"))

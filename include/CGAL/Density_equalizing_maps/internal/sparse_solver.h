@@ -180,6 +180,8 @@ public:
     m_known = true;
   }
   void forget() { m_known = false; }
+  /// The unknowns of the remembered pattern.
+  Eigen::Index rows() const { return m_known ? m_rows : 0; }
 
 private:
   bool m_known = false;
@@ -799,7 +801,7 @@ private:
   {
     X.resize(B.rows(), B.cols());
     iterations = 0;
-    const bool fused = m_tuning.fused_jacobi && m_inverse_diagonal.size() == B.rows();
+    const bool fused = m_tuning.fused_jacobi && preconditioned_by_jacobi(B.rows());
     for(Eigen::Index c = 0; c < B.cols(); ++c) {
       Vector x = guess.col(c);
       const int k = fused ? fused_jacobi_cg(B.col(c), x) : preconditioned_cg(B.col(c), x);
@@ -830,8 +832,7 @@ private:
     Vector& p = m_p;
     p = z;
     double rz = r.dot(z);
-    const bool jacobi = m_inverse_diagonal.size() == A.rows();
-    const int budget = jacobi ? std::max<int>(1000, static_cast<int>(A.rows())) : factorization_step_budget;
+    const int budget = step_budget(A.rows());
     for(int k = 1; k <= budget; ++k) {
       product(p, Ap);
       const double alpha = rz / p.dot(Ap);
@@ -873,7 +874,7 @@ private:
       rz += r[i] * z[i];
     }
     if(rr <= stop_squared) return 0;
-    const int budget = std::max<int>(1000, static_cast<int>(n));
+    const int budget = step_budget(n);
     for(int k = 1; k <= budget; ++k) {
       double pAp = 0;
       for(Eigen::Index i = 0; i < n; ++i) {
@@ -900,9 +901,16 @@ private:
 
   /// z = P^{-1} r. The lagged factorization's solve takes and fills n x 1
   /// matrices: they are kept, so a CG step copies no vector.
+  bool preconditioned_by_jacobi(Eigen::Index n) const { return m_inverse_diagonal.size() == n; }
+
+  /// CG steps allowed to one solve: Jacobi may need many (as many as
+  /// unknowns, at least 1,000), a factorization a handful.
+  int step_budget(Eigen::Index n) const
+  { return preconditioned_by_jacobi(n) ? std::max<int>(1000, static_cast<int>(n)) : factorization_step_budget; }
+
   void precondition(const Vector& r, Vector& z)
   {
-    if(m_inverse_diagonal.size() == r.size()) { z = m_inverse_diagonal.cwiseProduct(r); return; }
+    if(preconditioned_by_jacobi(r.size())) { z = m_inverse_diagonal.cwiseProduct(r); return; }
     m_residual_column = r;
     m_direct->solve(m_residual_column, m_preconditioned_column);
     z = m_preconditioned_column.col(0);
