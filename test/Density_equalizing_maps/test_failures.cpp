@@ -494,12 +494,13 @@ void bisection_cholesky_solves_and_refactors()
 /// factorization, stop at their step budget: a broken preconditioner makes
 /// the solve fail instead of running a step per unknown (at a million faces:
 /// minutes per solve). A correct one solves in a few steps.
-void diffusion_cg_fails_fast_on_a_broken_preconditioner()
+/// A side x side grid Laplacian plus `mass` times the identity.
+I::Sparse_matrix grid_diffusion_matrix(int side, double mass)
 {
-  const int side = 80, n = side * side; // a grid Laplacian plus a small mass
+  const int n = side * side;
   std::vector<Eigen::Triplet<double> > t;
   for(int v = 0; v < n; ++v) {
-    t.emplace_back(v, v, 1e-3);
+    t.emplace_back(v, v, mass);
     const int i = v / side, j = v % side;
     for(int d = 0; d < 2; ++d) {
       const int ni = i + (d == 0), nj = j + (d == 1);
@@ -511,6 +512,12 @@ void diffusion_cg_fails_fast_on_a_broken_preconditioner()
   I::Sparse_matrix A(n, n);
   A.setFromTriplets(t.begin(), t.end());
   A.makeCompressed();
+  return A;
+}
+
+void diffusion_cg_fails_fast_on_a_broken_preconditioner()
+{
+  const I::Sparse_matrix A = grid_diffusion_matrix(80, 1e-3);
   // "solves" every system with the identity: symmetric positive definite, so
   // CG still converges with it, in thousands of steps
   struct Identity_solver : I::Spd_solver
@@ -519,7 +526,7 @@ void diffusion_cg_fails_fast_on_a_broken_preconditioner()
     bool solve(const I::Matrix& B, I::Matrix& X) override { X = B; return true; }
     std::unique_ptr<I::Spd_solver> clone() const override { return std::make_unique<Identity_solver>(); }
   };
-  const I::Matrix B = I::Matrix::Random(n, 1);
+  const I::Matrix B = I::Matrix::Random(A.rows(), 1);
   I::Matrix X;
   I::Diffusion_pcg_solver broken(std::make_unique<Identity_solver>(), /*jacobi_below=*/0);
   check(broken.factor(A) && !broken.solve(B, X),
@@ -527,6 +534,37 @@ void diffusion_cg_fails_fast_on_a_broken_preconditioner()
   I::Diffusion_pcg_solver sound(I::make_default_spd_solver(), /*jacobi_below=*/0);
   check(sound.factor(A) && sound.solve(B, X) && (A * X - B).norm() <= 1e-8 * B.norm(),
         "diffusion CG: the factorization solves");
+}
+
+/// The lagged factorization of a matrix far from the current one (a mass
+/// 10^4 times larger: CG would need about a hundred steps) is redone inside
+/// the solve once it has taken the refactoring threshold's steps, not after
+/// the step budget.
+void diffusion_cg_refactors_a_stale_factorization_at_once()
+{
+  struct Counting_solver : I::Spd_solver
+  {
+    std::unique_ptr<I::Spd_solver> exact = I::make_default_spd_solver();
+    int* factorizations; int* applications;
+    Counting_solver(int* f, int* a) : factorizations(f), applications(a) {}
+    bool factor(const I::Sparse_matrix& M) override { ++*factorizations; return exact->factor(M); }
+    bool solve(const I::Matrix& B, I::Matrix& X) override { ++*applications; return exact->solve(B, X); }
+    std::unique_ptr<I::Spd_solver> clone() const override { return nullptr; }
+  };
+  const I::Sparse_matrix before = grid_diffusion_matrix(80, 1e-3), after = grid_diffusion_matrix(80, 10.);
+  const I::Matrix B = I::Matrix::Random(before.rows(), 1);
+  I::Matrix X;
+  int factorizations = 0, applications = 0;
+  const int refactor_steps = 12;
+  I::Diffusion_pcg_solver pcg(std::make_unique<Counting_solver>(&factorizations, &applications),
+                              /*jacobi_below=*/0, 1e-8, refactor_steps);
+  const bool first = pcg.factor(before) && pcg.solve(B, X);
+  applications = 0;
+  const bool second = pcg.factor(after) && pcg.solve(B, X);
+  check(first && second && (after * X - B).norm() <= 1e-8 * B.norm(), "diffusion CG: the stale sequence solves");
+  check(factorizations == 2 && applications <= refactor_steps + 5,
+        "diffusion CG: a stale factorization is redone within its solve (" + std::to_string(factorizations) +
+          " factorizations, " + std::to_string(applications) + " preconditioner applications)");
 }
 
 void mobius_validates_its_input()
@@ -570,6 +608,7 @@ int main()
   factorization_with_trailing_set_solves_both_systems();
   bisection_cholesky_solves_and_refactors();
   diffusion_cg_fails_fast_on_a_broken_preconditioner();
+  diffusion_cg_refactors_a_stale_factorization_at_once();
   mobius_validates_its_input();
   return finish("test_failures");
 }
