@@ -675,11 +675,15 @@ inline std::unique_ptr<Factorization_with_trailing_set> factorization_with_trail
 ///    dozen of them beat any triangular solve.
 ///  - larger systems: a Cholesky factorization of an *earlier* matrix of the
 ///    sequence, an excellent preconditioner for the nearby current one (a
-///    handful of steps). It is redone when a solve of the sequence reaches
-///    `refactor_iterations` steps on it: at once, for the matrix being solved,
-///    and CG goes on from its current iterate (refactoring only for the next
-///    solve, as before, let a stale factorization run up to its step budget:
-///    twistedball SDEM spent 100 and 92 steps in its second and third solves).
+///    handful of steps). It is redone for the next matrix when a solve
+///    needed more than `refactor_iterations` steps, and at once, for the
+///    matrix being solved, when a solve reaches twice as many on it: a
+///    factorization that far off would otherwise run up to its step budget
+///    (twistedball SDEM spent 100 and 92 steps in its second and third
+///    solves). Refactoring at once on every slow solve instead was measured
+///    worse: the first steps of a flow move the mesh most, and the matrix
+///    of a slow solve is soon stale too (SDEM at 1M faces: 6-10 steps per
+///    solve after it instead of 4-7, +10 % time).
 /// Relative residual 1e-8: far below what the velocity and the stopping tests
 /// (1e-3 and above) resolve.
 class Diffusion_pcg_solver : public Spd_solver
@@ -738,7 +742,7 @@ public:
       return m_inverse_diagonal.allFinite() && (diagonal.array() > 0).all();
     }
     m_inverse_diagonal.resize(0);
-    if(m_factored && m_rows == A.rows()) return true; // lagged: redone by a solve that needs it
+    if(m_factored && m_rows == A.rows() && m_last_iterations <= m_refactor_iterations) return true;
     return refactor();
   }
 
@@ -753,7 +757,8 @@ public:
     else if(known(m_last))
       guess = known(m_before_last) ? Matrix(2 * m_last - m_before_last) : m_last;
     int iterations = 0;
-    if(!run(B, X, guess, iterations, Refactoring::when_stale)) return false;
+    if(!run(B, X, guess, iterations, Refactoring::when_far_off)) return false;
+    m_last_iterations = iterations;
     // judged on warm-started solves only: the first ones start far off
     if(m_tuning.jacobi_step_limit > 0 && m_inverse_diagonal.size() == B.rows() && known(m_before_last) &&
        iterations > m_tuning.jacobi_step_limit)
@@ -786,11 +791,11 @@ private:
   /// weights reach 1e4 times the mass: the system is too ill-conditioned for
   /// it; or a lagged factorization too far from this matrix), the exact
   /// factorization of this very matrix, for good (Jacobi is given up).
-  /// Whether a solve redoes a stale lagged factorization as soon as it has
-  /// taken `m_refactor_iterations` steps on it (the sequence's solves), or
-  /// only after failing (a side system, which leaves the sequence's
-  /// factorization alone when it can).
-  enum class Refactoring { when_stale, on_failure_only };
+  /// Whether a solve redoes a lagged factorization far from its matrix as
+  /// soon as it has taken twice `m_refactor_iterations` steps on it (the
+  /// sequence's solves), or only after failing (a side system, which leaves
+  /// the sequence's factorization alone when it can).
+  enum class Refactoring { when_far_off, on_failure_only };
 
   bool run(const Matrix& B, Matrix& X, const Matrix& guess, int& iterations, Refactoring refactoring)
   {
@@ -845,9 +850,9 @@ private:
     p = z;
     double rz = r.dot(z);
     const int budget = step_budget(A.rows());
-    const bool refactor_when_stale = refactoring == Refactoring::when_stale && !preconditioned_by_jacobi(A.rows());
+    const bool refactor_when_far_off = refactoring == Refactoring::when_far_off && !preconditioned_by_jacobi(A.rows());
     for(int k = 1, on_this_factorization = 0; k <= budget; ++k, ++on_this_factorization) {
-      if(refactor_when_stale && on_this_factorization == m_refactor_iterations) {
+      if(refactor_when_far_off && on_this_factorization == 2 * m_refactor_iterations) {
         if(!refactor()) return -1;
         on_this_factorization = 0; // CG restarts from x, preconditioned by the new factorization
         product(x, Ap);
@@ -942,6 +947,7 @@ private:
   Eigen::Index m_jacobi_below;
   double m_tolerance;
   int m_refactor_iterations;
+  int m_last_iterations = 0; // steps of the sequence's last solve
   Tuning m_tuning;
   bool m_jacobi_given_up = false;
   Vector m_r, m_z, m_p, m_Ap; // work vectors of the CG loops
