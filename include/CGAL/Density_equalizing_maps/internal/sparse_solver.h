@@ -786,17 +786,17 @@ public:
   }
 
 private:
-  /// CG with the current preconditioner; if it misses the tolerance within
-  /// its step budget (Jacobi on meshes with sliver faces, whose cotangent
-  /// weights reach 1e4 times the mass: the system is too ill-conditioned for
-  /// it; or a lagged factorization too far from this matrix), the exact
-  /// factorization of this very matrix, for good (Jacobi is given up).
   /// Whether a solve redoes a lagged factorization far from its matrix as
   /// soon as it has taken twice `m_refactor_iterations` steps on it (the
   /// sequence's solves), or only after failing (a side system, which leaves
   /// the sequence's factorization alone when it can).
   enum class Refactoring { when_far_off, on_failure_only };
 
+  /// CG with the current preconditioner; if it misses the tolerance within
+  /// its step budget (Jacobi on meshes with sliver faces, whose cotangent
+  /// weights reach 1e4 times the mass: the system is too ill-conditioned for
+  /// it; or a lagged factorization too far from this matrix), the exact
+  /// factorization of this very matrix, for good (Jacobi is given up).
   bool run(const Matrix& B, Matrix& X, const Matrix& guess, int& iterations, Refactoring refactoring)
   {
     if(preconditioned_run(B, X, guess, iterations, refactoring)) return true;
