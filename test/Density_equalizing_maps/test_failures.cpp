@@ -418,6 +418,36 @@ void factorization_with_trailing_set_solves_both_systems()
         "a user's solver has no factorization with a trailing set");
 }
 
+/// A side x side grid Laplacian plus `mass` times the identity; the edge
+/// between vertices v < u weighs weight(v, u).
+template <class Weight>
+I::Sparse_matrix grid_diffusion_matrix(int side, double mass, Weight weight)
+{
+  const int n = side * side;
+  std::vector<Eigen::Triplet<double> > t;
+  for(int v = 0; v < n; ++v) {
+    t.emplace_back(v, v, mass);
+    const int i = v / side, j = v % side;
+    for(int d = 0; d < 2; ++d) {
+      const int ni = i + (d == 0), nj = j + (d == 1);
+      if(ni >= side || nj >= side) continue;
+      const int u = ni * side + nj;
+      const double w = weight(v, u);
+      t.emplace_back(v, v, w); t.emplace_back(u, u, w); t.emplace_back(v, u, -w); t.emplace_back(u, v, -w);
+    }
+  }
+  I::Sparse_matrix A(n, n);
+  A.setFromTriplets(t.begin(), t.end());
+  A.makeCompressed();
+  return A;
+}
+
+/// The same with unit edge weights.
+I::Sparse_matrix grid_diffusion_matrix(int side, double mass)
+{
+  return grid_diffusion_matrix(side, mass, [](int, int) { return 1.; });
+}
+
 /// The factorization split by a separator (bisection_cholesky.h) on a
 /// 50 x 50 grid Laplacian plus a small mass: the separator splits the graph,
 /// the solution is that of the whole system, sequential and parallel solves
@@ -428,22 +458,7 @@ void bisection_cholesky_solves_and_refactors()
 #ifdef CGAL_DEM_USE_CHOLMOD
   const int side = 50, n = side * side;
   auto grid = [&](double mass, double scale) {
-    std::vector<Eigen::Triplet<double> > t;
-    for(int v = 0; v < n; ++v) {
-      t.emplace_back(v, v, mass);
-      const int i = v / side, j = v % side;
-      for(int d = 0; d < 2; ++d) {
-        const int ni = i + (d == 0), nj = j + (d == 1);
-        if(ni >= side || nj >= side) continue;
-        const int u = ni * side + nj;
-        const double w = scale * (1. + 0.1 * ((v * 7 + u) % 5));
-        t.emplace_back(v, v, w); t.emplace_back(u, u, w); t.emplace_back(v, u, -w); t.emplace_back(u, v, -w);
-      }
-    }
-    I::Sparse_matrix A(n, n);
-    A.setFromTriplets(t.begin(), t.end());
-    A.makeCompressed();
-    return A;
+    return grid_diffusion_matrix(side, mass, [scale](int v, int u) { return scale * (1. + 0.1 * ((v * 7 + u) % 5)); });
   };
   const I::Sparse_matrix A = grid(0.01, 1.), A2 = grid(0.5, 3.);
   std::vector<signed char> side_of;
@@ -494,27 +509,6 @@ void bisection_cholesky_solves_and_refactors()
 /// factorization, stop at their step budget: a broken preconditioner makes
 /// the solve fail instead of running a step per unknown (at a million faces:
 /// minutes per solve). A correct one solves in a few steps.
-/// A side x side grid Laplacian plus `mass` times the identity.
-I::Sparse_matrix grid_diffusion_matrix(int side, double mass)
-{
-  const int n = side * side;
-  std::vector<Eigen::Triplet<double> > t;
-  for(int v = 0; v < n; ++v) {
-    t.emplace_back(v, v, mass);
-    const int i = v / side, j = v % side;
-    for(int d = 0; d < 2; ++d) {
-      const int ni = i + (d == 0), nj = j + (d == 1);
-      if(ni >= side || nj >= side) continue;
-      const int u = ni * side + nj;
-      t.emplace_back(v, v, 1.); t.emplace_back(u, u, 1.); t.emplace_back(v, u, -1.); t.emplace_back(u, v, -1.);
-    }
-  }
-  I::Sparse_matrix A(n, n);
-  A.setFromTriplets(t.begin(), t.end());
-  A.makeCompressed();
-  return A;
-}
-
 void diffusion_cg_fails_fast_on_a_broken_preconditioner()
 {
   const I::Sparse_matrix A = grid_diffusion_matrix(80, 1e-3);
