@@ -410,6 +410,18 @@ void factorization_with_trailing_set_solves_both_systems()
   for(int v = 0; v < n; ++v) if(trailing[v]) trailing_part = std::max(trailing_part, XL.row(v).norm());
   check(error <= 1e-9 * XR.norm(), "the leading solve is the subsystem's solution (" + std::to_string(error) + ")");
   check(trailing_part == 0, "the leading solve is 0 on the trailing set");
+  // the halves: Y = G^-1 B_R with A_RR = G G^T, so Y^T Y = B_R^T A_RR^-1 B_R
+  // (the Schur complements of the spherical conformal map's south step), and
+  // the backward half of Y, whatever its trailing rows hold, is the leading solve
+  I::Matrix Y, XH;
+  check(f->forward_leading(B, Y), "it runs the forward half of the leading solve");
+  const I::Matrix gram = Y.transpose() * Y, expected = BR.transpose() * XR;
+  check((gram - expected).norm() <= 1e-9 * expected.norm(),
+        "the forward half's Gram matrix is B_R^T A_RR^-1 B_R (" + std::to_string((gram - expected).norm()) + ")");
+  const I::Index_matrix::Index leading_count = I::Index_matrix::Index(leading.size());
+  Y.bottomRows(n - leading_count).setConstant(1e3); // the factor's order: R first, T last
+  check(f->backward_leading(Y, XH) && (XH - XL).norm() <= 1e-12 * XL.norm(),
+        "the backward half gives the leading solve and ignores the trailing rows");
   check(!f->factor(A, std::vector<char>(3, 0)), "a trailing set of the wrong size is refused");
   check(!f->solve_leading(B, XL), "nothing is solved after a refused factorization");
 #endif

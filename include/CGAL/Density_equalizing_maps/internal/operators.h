@@ -126,24 +126,40 @@ public:
         for(int a = 0; a < 3; ++a) m_corners[next[F(k, a)]++] = int(3 * k + a);
     }
     m_first_corner = std::move(first);
-    std::vector<int> outer(static_cast<std::size_t>(n) + 1, 0), inner, column;
-    inner.reserve(static_cast<std::size_t>(7 * n));
-    for(Eigen::Index c = 0; c < n; ++c) {
-      column.assign(1, int(c));
-      for(int s = m_first_corner[c]; s < m_first_corner[c + 1]; ++s)
-        for(int a = 0; a < 3; ++a) column.push_back(F(m_corners[s] / 3, a));
-      std::sort(column.begin(), column.end());
-      column.erase(std::unique(column.begin(), column.end()), column.end());
-      inner.insert(inner.end(), column.begin(), column.end());
-      outer[c + 1] = int(inner.size());
-    }
+    // Each column (the vertex and the corners of its faces, sorted, without
+    // repeats) is written by one thread into room for all its candidates,
+    // then the columns are packed: the same pattern on any number of threads.
+    std::vector<int> room(static_cast<std::size_t>(n) + 1, 0), length(static_cast<std::size_t>(n), 0);
+    for(Eigen::Index c = 0; c < n; ++c) room[c + 1] = room[c] + 1 + 3 * (m_first_corner[c + 1] - m_first_corner[c]);
+    std::vector<int> candidates(static_cast<std::size_t>(room[n]));
+    parallel_for(n, [&](Eigen::Index begin, Eigen::Index end) {
+      for(Eigen::Index c = begin; c < end; ++c) {
+        int* column = candidates.data() + room[c];
+        int* last = column;
+        *last++ = int(c);
+        for(int s = m_first_corner[c]; s < m_first_corner[c + 1]; ++s)
+          for(int a = 0; a < 3; ++a) *last++ = F(m_corners[s] / 3, a);
+        std::sort(column, last);
+        length[c] = int(std::unique(column, last) - column);
+      }
+    });
+    std::vector<int> outer(static_cast<std::size_t>(n) + 1, 0);
+    for(Eigen::Index c = 0; c < n; ++c) outer[c + 1] = outer[c] + length[c];
+    std::vector<int> inner(static_cast<std::size_t>(outer[n]));
+    parallel_for(n, [&](Eigen::Index begin, Eigen::Index end) {
+      for(Eigen::Index c = begin; c < end; ++c)
+        std::copy(candidates.data() + room[c], candidates.data() + room[c] + length[c], inner.data() + outer[c]);
+    });
+    { std::vector<int> none; candidates.swap(none); }
     std::vector<double> zeros(inner.size(), 0.);
     m_pattern = Eigen::Map<const Sparse_matrix>(n, n, Eigen::Index(inner.size()), outer.data(), inner.data(),
                                                 zeros.data());
     m_slot.resize(F.rows(), 9);
-    for(Eigen::Index k = 0; k < F.rows(); ++k)
-      for(int a = 0; a < 3; ++a)
-        for(int b = 0; b < 3; ++b) m_slot(k, 3 * a + b) = int(slot(F(k, a), F(k, b)));
+    parallel_for(F.rows(), [&](Eigen::Index begin, Eigen::Index end) {
+      for(Eigen::Index k = begin; k < end; ++k)
+        for(int a = 0; a < 3; ++a)
+          for(int b = 0; b < 3; ++b) m_slot(k, 3 * a + b) = int(slot(F(k, a), F(k, b)));
+    });
     m_diag.resize(n);
     for(Eigen::Index i = 0; i < n; ++i) m_diag[i] = slot(i, i);
   }
@@ -180,6 +196,8 @@ public:
   }
 
   Eigen::Index size() const { return m_pattern.rows(); }
+  /// The pattern (all values 0): the vertex adjacency plus the diagonal.
+  const Sparse_matrix& pattern() const { return m_pattern; }
 
 private:
   /// Same sizes and same (shared or equal) index arrays as the pattern.

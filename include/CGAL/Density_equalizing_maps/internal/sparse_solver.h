@@ -344,6 +344,11 @@ public:
   virtual bool solve(const Matrix& B, Matrix& X) = 0;
   /// A_RR X_R = B_R; the rows of T in B are ignored and are 0 in X.
   virtual bool solve_leading(const Matrix& B, Matrix& X) = 0;
+  /// The two halves of solve_leading(), with A_RR = G G^T: Y = G^-1 B_R in
+  /// the factorization's order of the unknowns (T's rows 0), and X =
+  /// A_RR^-1 B_R from such a Y (its rows of T are ignored).
+  virtual bool forward_leading(const Matrix& B, Matrix& Y) = 0;
+  virtual bool backward_leading(const Matrix& Y, Matrix& X) = 0;
 };
 
 #ifdef CGAL_DEM_USE_CHOLMOD
@@ -396,6 +401,16 @@ public:
 
   bool solve_leading(const Matrix& B, Matrix& X) override
   { return run({CHOLMOD_P, CHOLMOD_L, CHOLMOD_Lt, CHOLMOD_Pt}, B, X, true); }
+
+  bool forward_leading(const Matrix& B, Matrix& Y) override { return run({CHOLMOD_P, CHOLMOD_L}, B, Y, true); }
+
+  bool backward_leading(const Matrix& Y, Matrix& X) override
+  {
+    if(!m_factor || Y.rows() != Eigen::Index(m_factor->n)) return false;
+    Matrix leading = Y;
+    leading.bottomRows(leading.rows() - m_leading).setZero();
+    return run({CHOLMOD_Lt, CHOLMOD_Pt}, leading, X, false);
+  }
 
   /// The numeric factorization of A, whose sparsity pattern must be that of
   /// the last successful `factor()`, on its ordering and symbolic analysis.

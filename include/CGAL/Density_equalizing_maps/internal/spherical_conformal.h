@@ -200,19 +200,16 @@ inline bool south_solve_on_leading_block(const Sparse_matrix& L, const Index_mat
     }
   Matrix B_T(3, 5); // T's rows: b_T and L_TT (the leading solve ignores them)
   for(int a = 0; a < 3; ++a) B_T.row(a) = B.row(T[a]);
-  Matrix Y;
-  if(!factorization.solve_leading(B, Y)) return false;
-  // (L_TT - L_TR L_RR^-1 L_RT) w_T = b_T - L_TR L_RR^-1 b_R; Y is 0 outside R
-  Eigen::Matrix3d schur = B_T.rightCols<3>();
-  Eigen::Matrix<double, 3, 2> rhs = B_T.leftCols<2>();
-  for(int a = 0; a < 3; ++a)
-    for(Sparse_matrix::InnerIterator it(L, T[a]); it; ++it) { // column T_a = row T_a
-      rhs.row(a) -= it.value() * Y.row(it.row()).head<2>();
-      schur.row(a) -= it.value() * Y.row(it.row()).tail<3>();
-    }
+  // With L_RR = G G^T and Z = G^-1 B_R (forward halves only): the Schur
+  // complement onto T is L_TT - Z_T^T Z_T (Z_T: the columns of L_RT), T's
+  // right-hand side b_T - Z_T^T Z_b; then w_R = L_RR^-1 (b_R - L_RT w_T) =
+  // G^-T (Z_b - Z_T w_T) takes one backward half, on two columns, not five.
+  Matrix Z;
+  if(!factorization.forward_leading(B, Z)) return false;
+  const Eigen::Matrix3d schur = B_T.rightCols<3>() - Z.rightCols<3>().transpose() * Z.rightCols<3>();
+  const Eigen::Matrix<double, 3, 2> rhs = B_T.leftCols<2>() - Z.rightCols<3>().transpose() * Z.leftCols<2>();
   const Eigen::Matrix<double, 3, 2> w_T = schur.fullPivLu().solve(rhs);
-  if(!w_T.allFinite()) return false;
-  w = Y.leftCols<2>() - Y.rightCols<3>() * w_T;
+  if(!w_T.allFinite() || !factorization.backward_leading(Z.leftCols<2>() - Z.rightCols<3>() * w_T, w)) return false;
   for(int a = 0; a < 3; ++a) w.row(T[a]) = w_T.row(a);
   for(Eigen::Index i = 0; i < n; ++i)
     if(chart.pinned[i]) w.row(i) = chart.P.row(i);
@@ -305,10 +302,14 @@ inline Flash_result flash_spherical_map(const Matrix& X, const Index_matrix& F, 
   std::unique_ptr<Factorization_with_trailing_set> one_factorization =
     cap_first ? factorization_with_trailing_set_like(prototype) : nullptr;
   begin_stage(stage, "harmonic map (cotangent Laplacian, sparse Cholesky)");
-  // the m x 9 blocks die before the factorization, the memory peak
-  Sparse_matrix L = assembler.assemble(cotangent_stiffness_blocks(X, F));
+  // The Laplacian's values and the cap (a serial Dijkstra over its pattern)
+  // are computed side by side. The m x 9 blocks die before the
+  // factorization, the memory peak.
+  Sparse_matrix L;
   const Eigen::Index cap_size = std::max<Eigen::Index>(static_cast<Eigen::Index>(std::llround(n / 10.)), 3);
-  const South_cap cap = cap_first ? farthest_vertices_from_face(X, L, F, t, cap_size) : South_cap();
+  South_cap cap;
+  parallel_invoke([&] { L = assembler.assemble(cotangent_stiffness_blocks(X, F)); },
+                  [&] { if(cap_first) cap = farthest_vertices_from_face(X, assembler.pattern(), F, t, cap_size); });
   std::vector<char> cap_and_puncture = cap_first ? cap.member : std::vector<char>(static_cast<std::size_t>(n), 0);
   for(int c = 0; c < 3; ++c) {
     if(cap_and_puncture[F(t, c)]) one_factorization.reset(); // a tiny mesh: the cap reaches the puncture
@@ -456,13 +457,34 @@ inline std::string crowding_note(const Matrix& X, const Index_matrix& F, const M
 /// sphere taking w0 to the south pole followed by a dilation. Up to a final
 /// rotation (which does not change areas) every Moebius map is of this form.
 /// The dilation factor e^s is given (a map applied to many points computes
-/// it once).
+/// it once). Infinity (the north pole) goes to e^s / conj(w0).
 inline Complex mobius_rotation_scaling(Complex z, Complex w0, double dilation)
 {
   if(!std::isfinite(z.real()) || !std::isfinite(z.imag()))
     return std::norm(w0) == 0 ? z : dilation / std::conj(w0);
   const Complex num = z - w0, den = 1. + std::conj(w0) * z;
   return (dilation / std::norm(den)) * (num * std::conj(den)); // real arithmetic: no complex division
+}
+
+/// The point of the sphere of the Moebius map (mobius_rotation_scaling()) of
+/// the north-chart point z: (P^N)^{-1}(u) = (2 Re u, 2 Im u, |u|^2 - 1) /
+/// (1 + |u|^2) for u = f(z). The Moebius search evaluates it hundreds of
+/// times per vertex, so it takes two divisions where the general functions
+/// take five or six: the one of f, and 1 / (1 + |u|^2) for the three
+/// coordinates. Points whose image is at or beyond |u|^2 = 1e300 (where the
+/// formula would overflow), or not finite, take the general, overflow-safe
+/// path.
+inline Eigen::Vector3d mobius_point_on_sphere(Complex z, Complex w0, double dilation)
+{
+  const double x = z.real() - w0.real(), y = z.imag() - w0.imag();       // z - w0
+  const double a = 1 + w0.real() * z.real() + w0.imag() * z.imag();      // 1 + conj(w0) z
+  const double b = w0.real() * z.imag() - w0.imag() * z.real();
+  const double scale = dilation / (a * a + b * b);
+  const double ux = scale * (x * a + y * b), uy = scale * (y * a - x * b); // scale (z - w0) conj(den)
+  const double m = ux * ux + uy * uy;
+  if(!(m < 1e300)) return inverse_north_stereographic(mobius_rotation_scaling(z, w0, dilation));
+  const double r = 1 / (1 + m);
+  return Eigen::Vector3d(2 * ux * r, 2 * uy * r, (m - 1) * r);
 }
 
 /// The Moebius map with parameters xi (w0 = xi[0] + i xi[1], dilation
@@ -474,25 +496,26 @@ void mobius_image(const Complex_vector& z, const Eigen::Vector3d& xi, RowMatrix&
   const Complex w0(xi[0], xi[1]);
   const double dilation = std::exp(xi[2]);
   parallel_for(z.size(), [&](Eigen::Index begin, Eigen::Index end) {
-    for(Eigen::Index i = begin; i < end; ++i)
-      image.row(i) = inverse_north_stereographic(mobius_rotation_scaling(z[i], w0, dilation)).transpose();
+    for(Eigen::Index i = begin; i < end; ++i) image.row(i) = mobius_point_on_sphere(z[i], w0, dilation).transpose();
   });
 }
 
 /// mean |log(image_area / image_total / target_share)| over the faces where
 /// it is finite, each face's term being the log of its share of the image
-/// area against its share of the target. The logarithms run over fixed blocks
-/// of faces in Eigen's vectorized form (the scalar log was about a third of an
-/// evaluation of the Moebius search), and the sums add up the same way on any
-/// number of threads.
-inline double mean_abs_log_area_ratio(const Vector& target_share, const Vector& image_area, double image_total)
+/// area against its share of the target, computed as log(image_area) -
+/// log(target_share) - log(image_total) with the target's logarithms given
+/// (one logarithm per face and evaluation, no division). The logarithms run
+/// over fixed blocks of faces in Eigen's vectorized form, and the sums add
+/// up the same way on any number of threads.
+inline double mean_abs_log_area_ratio(const Vector& log_target_share, const Vector& image_area, double image_total)
 {
-  const Eigen::Index m = target_share.size();
+  const Eigen::Index m = log_target_share.size();
+  const double log_total = std::log(image_total);
   std::vector<std::array<double, 2> > block_sums(static_cast<std::size_t>((m + parallel_block - 1) / parallel_block));
   for_each_fixed_block(m, [&](Eigen::Index b, Eigen::Index begin, Eigen::Index end) {
     const Eigen::Index len = end - begin;
     const Eigen::ArrayXd d =
-      ((image_area.segment(begin, len).array() / image_total) / target_share.segment(begin, len).array()).log();
+      image_area.segment(begin, len).array().log() - log_target_share.segment(begin, len).array() - log_total;
     const auto finite = d.isFinite();
     // the sum of |log ratio| and the number of faces where it is finite
     block_sums[static_cast<std::size_t>(b)] = {finite.select(d.abs(), 0.).sum(), double(finite.count())};
@@ -524,7 +547,7 @@ public:
     m_F.resize(sample.F.rows(), 3);
     for(Eigen::Index k = 0; k < sample.F.rows(); ++k)
       for(int c = 0; c < 3; ++c) m_F(k, c) = compact[static_cast<std::size_t>(sample.F(k, c))];
-    m_target_share = sample.source_area / sample.source_total;
+    m_log_target_share = (sample.source_area / sample.source_total).array().log().matrix();
     m_image.resize(m_z.size(), 3);
     m_image_area.resize(m_F.rows());
   }
@@ -538,13 +561,13 @@ public:
       m_image_area[k] = 0.5 * (b - a).cross(c - a).norm();
       s[0] += m_image_area[k];
     })[0];
-    return mean_abs_log_area_ratio(m_target_share, m_image_area, total);
+    return mean_abs_log_area_ratio(m_log_target_share, m_image_area, total);
   }
 
 private:
   Complex_vector m_z;
   Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor> m_F;
-  Vector m_target_share;
+  Vector m_log_target_share;
   Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> m_image;
   Vector m_image_area;
 };
