@@ -302,14 +302,17 @@ inline Flash_result flash_spherical_map(const Matrix& X, const Index_matrix& F, 
   std::unique_ptr<Factorization_with_trailing_set> one_factorization =
     cap_first ? factorization_with_trailing_set_like(prototype) : nullptr;
   begin_stage(stage, "harmonic map (cotangent Laplacian, sparse Cholesky)");
-  // The Laplacian's values and the cap (a serial Dijkstra over its pattern)
-  // are computed side by side. The m x 9 blocks die before the
-  // factorization, the memory peak.
-  Sparse_matrix L;
+  // The Laplacian's values (into storage allocated here) and the cap (a
+  // serial Dijkstra over its pattern) are computed side by side. The m x 9
+  // blocks die before the factorization, the memory peak.
+  Sparse_matrix L = assembler.pattern();
   const Eigen::Index cap_size = std::max<Eigen::Index>(static_cast<Eigen::Index>(std::llround(n / 10.)), 3);
   South_cap cap;
-  parallel_invoke([&] { L = assembler.assemble(cotangent_stiffness_blocks(X, F)); },
-                  [&] { if(cap_first) cap = farthest_vertices_from_face(X, assembler.pattern(), F, t, cap_size); });
+  {
+    Matrix blocks(F.rows(), 9);
+    run_beside([&] { cotangent_stiffness_blocks(X, F, 1., blocks); assembler.assemble(blocks, nullptr, L); },
+               [&] { if(cap_first) cap = farthest_vertices_from_face(X, assembler.pattern(), F, t, cap_size); });
+  }
   std::vector<char> cap_and_puncture = cap_first ? cap.member : std::vector<char>(static_cast<std::size_t>(n), 0);
   for(int c = 0; c < 3; ++c) {
     if(cap_and_puncture[F(t, c)]) one_factorization.reset(); // a tiny mesh: the cap reaches the puncture
