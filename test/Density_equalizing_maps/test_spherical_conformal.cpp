@@ -8,6 +8,9 @@
 #include <CGAL/Density_equalizing_maps/measures.h>
 #include <CGAL/Density_equalizing_maps/spherical_conformal_map.h>
 
+#include <cmath>
+#include <limits>
+
 #include "dem_test_meshes.h"
 
 namespace DEM = CGAL::Density_equalizing_maps;
@@ -130,6 +133,31 @@ void check_cap_chosen_first()
   check_mesh(m, "bumpy(6)", 0.03, false);
 }
 
+// The Moebius search's image of a point (two divisions) is the point of the
+// general functions, mobius_rotation_scaling() then the inverse stereographic
+// projection, on the unit sphere, from the origin to near the pole and for the
+// pole itself, for rotations, dilations and their limits.
+void check_mobius_point_on_sphere()
+{
+  namespace I = DEM::internal;
+  const double inf = std::numeric_limits<double>::infinity();
+  const I::Complex points[] = {{0, 0}, {0.3, -0.2}, {-1, 0}, {0.7071, 0.7071}, {2.5, 1e-3}, {-40, 7},
+                               {1e-9, -1e-9}, {3e7, -2e7}, {1e140, 1e140}, {inf, 0}};
+  const I::Complex centres[] = {{0, 0}, {0.4, -0.1}, {-2, 3}, {1e-3, 0}};
+  double worst = 0;
+  bool on_sphere = true;
+  for(const I::Complex& w0 : centres)
+    for(const double s : {-30., -2., 0., 0.7, 30.})
+      for(const I::Complex& z : points) {
+        const Eigen::Vector3d fast = I::mobius_point_on_sphere(z, w0, std::exp(s));
+        const Eigen::Vector3d general = I::inverse_north_stereographic(I::mobius_rotation_scaling(z, w0, std::exp(s)));
+        worst = std::max(worst, (fast - general).norm());
+        on_sphere = on_sphere && std::abs(fast.norm() - 1) <= 1e-14;
+      }
+  check(worst <= 1e-13, "the Moebius search's image is the general functions' point (" + std::to_string(worst) + ")");
+  check(on_sphere, "the Moebius search's image lies on the unit sphere");
+}
+
 } // namespace
 
 int shared_part();
@@ -138,6 +166,7 @@ int main(int argc, char** argv)
 {
   if(shared_part_requested(argc, argv)) return run_shared_part("maxplanck.off", shared_part);
   Stopwatch clock;
+  check_mobius_point_on_sphere();
   {
     Mesh m = icosphere(4);
     check_mesh(m, "icosphere(4)", 0.01, false, 1e-3);
