@@ -349,6 +349,36 @@ void solver_clones_keep_the_settings()
   check(r.fold_overs == 0, "spherical conformal map with a configured CG solver: 0 fold-overs");
 }
 
+/// A side x side grid Laplacian plus `mass` times the identity; the edge
+/// between vertices v < u weighs weight(v, u).
+template <class Weight>
+I::Sparse_matrix grid_diffusion_matrix(int side, double mass, Weight weight)
+{
+  const int n = side * side;
+  std::vector<Eigen::Triplet<double> > t;
+  for(int v = 0; v < n; ++v) {
+    t.emplace_back(v, v, mass);
+    const int i = v / side, j = v % side;
+    for(int d = 0; d < 2; ++d) {
+      const int ni = i + (d == 0), nj = j + (d == 1);
+      if(ni >= side || nj >= side) continue;
+      const int u = ni * side + nj;
+      const double w = weight(v, u);
+      t.emplace_back(v, v, w); t.emplace_back(u, u, w); t.emplace_back(v, u, -w); t.emplace_back(u, v, -w);
+    }
+  }
+  I::Sparse_matrix A(n, n);
+  A.setFromTriplets(t.begin(), t.end());
+  A.makeCompressed();
+  return A;
+}
+
+/// The same with unit edge weights.
+I::Sparse_matrix grid_diffusion_matrix(int side, double mass)
+{
+  return grid_diffusion_matrix(side, mass, [](int, int) { return 1.; });
+}
+
 // The factorization whose ordering puts a trailing set last (the spherical
 // conformal map's one factorization for two systems): it solves the whole
 // system, and the principal subsystem on the other unknowns with the same
@@ -358,22 +388,8 @@ void solver_clones_keep_the_settings()
 void factorization_with_trailing_set_solves_both_systems()
 {
   const int side = 30, n = side * side; // grid Laplacian plus a small mass: SPD
-  std::vector<Eigen::Triplet<double> > t;
-  for(int i = 0; i < side; ++i)
-    for(int j = 0; j < side; ++j) {
-      const int v = i * side + j;
-      t.emplace_back(v, v, 0.01);
-      for(int d = 0; d < 2; ++d) {
-        const int ni = i + (d == 0), nj = j + (d == 1);
-        if(ni >= side || nj >= side) continue;
-        const int u = ni * side + nj;
-        const double w = 1. + 0.1 * ((v * 7 + u) % 5);
-        t.emplace_back(v, v, w); t.emplace_back(u, u, w); t.emplace_back(v, u, -w); t.emplace_back(u, v, -w);
-      }
-    }
-  I::Sparse_matrix A(n, n);
-  A.setFromTriplets(t.begin(), t.end());
-  A.makeCompressed();
+  const I::Sparse_matrix A =
+    grid_diffusion_matrix(side, 0.01, [](int v, int u) { return 1. + 0.1 * ((v * 7 + u) % 5); });
   std::vector<char> trailing(n, 0);
   for(int v = 0; v < n; ++v) trailing[v] = (v % 11 == 3) || (v / side >= side - 4); // scattered and a band
   std::vector<int> leading;
@@ -428,36 +444,6 @@ void factorization_with_trailing_set_solves_both_systems()
   typedef CGAL::Eigen_solver_traits<Eigen::SimplicialLDLT<CGAL::Eigen_sparse_matrix<double>::EigenType> > Ldlt;
   check(I::factorization_with_trailing_set_like(*I::make_spd_solver(Ldlt())) == nullptr,
         "a user's solver has no factorization with a trailing set");
-}
-
-/// A side x side grid Laplacian plus `mass` times the identity; the edge
-/// between vertices v < u weighs weight(v, u).
-template <class Weight>
-I::Sparse_matrix grid_diffusion_matrix(int side, double mass, Weight weight)
-{
-  const int n = side * side;
-  std::vector<Eigen::Triplet<double> > t;
-  for(int v = 0; v < n; ++v) {
-    t.emplace_back(v, v, mass);
-    const int i = v / side, j = v % side;
-    for(int d = 0; d < 2; ++d) {
-      const int ni = i + (d == 0), nj = j + (d == 1);
-      if(ni >= side || nj >= side) continue;
-      const int u = ni * side + nj;
-      const double w = weight(v, u);
-      t.emplace_back(v, v, w); t.emplace_back(u, u, w); t.emplace_back(v, u, -w); t.emplace_back(u, v, -w);
-    }
-  }
-  I::Sparse_matrix A(n, n);
-  A.setFromTriplets(t.begin(), t.end());
-  A.makeCompressed();
-  return A;
-}
-
-/// The same with unit edge weights.
-I::Sparse_matrix grid_diffusion_matrix(int side, double mass)
-{
-  return grid_diffusion_matrix(side, mass, [](int, int) { return 1.; });
 }
 
 /// The factorization split by a separator (bisection_cholesky.h) on a

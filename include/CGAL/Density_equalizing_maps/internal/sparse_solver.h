@@ -342,13 +342,17 @@ public:
   virtual bool factor(const Sparse_matrix& A, const std::vector<char>& trailing) = 0;
   /// A X = B.
   virtual bool solve(const Matrix& B, Matrix& X) = 0;
-  /// A_RR X_R = B_R; the rows of T in B are ignored and are 0 in X.
-  virtual bool solve_leading(const Matrix& B, Matrix& X) = 0;
   /// The two halves of solve_leading(), with A_RR = G G^T: Y = G^-1 B_R in
   /// the factorization's order of the unknowns (T's rows 0), and X =
   /// A_RR^-1 B_R from such a Y (its rows of T are ignored).
   virtual bool forward_leading(const Matrix& B, Matrix& Y) = 0;
   virtual bool backward_leading(const Matrix& Y, Matrix& X) = 0;
+  /// A_RR X_R = B_R; the rows of T in B are ignored and are 0 in X.
+  bool solve_leading(const Matrix& B, Matrix& X)
+  {
+    Matrix Y;
+    return forward_leading(B, Y) && backward_leading(Y, X);
+  }
 };
 
 #ifdef CGAL_DEM_USE_CHOLMOD
@@ -398,9 +402,6 @@ public:
   }
 
   bool solve(const Matrix& B, Matrix& X) override { return run({CHOLMOD_A}, B, X, false); }
-
-  bool solve_leading(const Matrix& B, Matrix& X) override
-  { return run({CHOLMOD_P, CHOLMOD_L, CHOLMOD_Lt, CHOLMOD_Pt}, B, X, true); }
 
   bool forward_leading(const Matrix& B, Matrix& Y) override { return run({CHOLMOD_P, CHOLMOD_L}, B, Y, true); }
 

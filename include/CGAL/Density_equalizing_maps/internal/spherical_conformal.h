@@ -76,7 +76,8 @@ inline bool punctured_harmonic_map(Sparse_matrix L, const Index_matrix& F, Eigen
 /// The south cap of FLASH chosen *before* the north step, so that one
 /// factorization serves both steps: the `m` vertices farthest from the
 /// corners of the north face `t` along the mesh's edges (Dijkstra over edge
-/// lengths; the Laplacian's pattern gives the neighbours). FLASH's own cap,
+/// lengths; the neighbours are the off-diagonal entries of `adjacency`, the
+/// Laplacian's pattern). FLASH's own cap,
 /// the m vertices of lowest height after the north step, is known only after
 /// the first factorization. Both are far from the puncture, where the north
 /// step's map is accurate, which is all the south step asks of its cap.
@@ -86,7 +87,7 @@ struct South_cap
   Eigen::Index deepest = -1;    // the farthest vertex: it goes to the south pole
 };
 
-inline South_cap farthest_vertices_from_face(const Matrix& X, const Sparse_matrix& L, const Index_matrix& F,
+inline South_cap farthest_vertices_from_face(const Matrix& X, const Sparse_matrix& adjacency, const Index_matrix& F,
                                              Eigen::Index t, Eigen::Index m)
 {
   const Eigen::Index n = X.rows();
@@ -98,7 +99,7 @@ inline South_cap farthest_vertices_from_face(const Matrix& X, const Sparse_matri
     const Entry e = front.top();
     front.pop();
     if(e.first > distance[e.second]) continue;
-    for(Sparse_matrix::InnerIterator it(L, e.second); it; ++it) {
+    for(Sparse_matrix::InnerIterator it(adjacency, e.second); it; ++it) {
       const int j = int(it.row());
       const double d = e.first + (row3(X, j) - row3(X, e.second)).norm();
       if(d < distance[j]) { distance[j] = d; front.emplace(d, j); }
