@@ -11,6 +11,7 @@
 #include <CGAL/Density_equalizing_maps/spherical_density_equalizing_map.h>
 #include <CGAL/Density_equalizing_maps/toroidal_density_equalizing_map.h>
 #include <CGAL/Density_equalizing_maps/internal/parallel.h>
+#include <CGAL/Density_equalizing_maps/internal/point_location.h>
 
 #include "dem_test_meshes.h"
 
@@ -133,6 +134,71 @@ void test_building_blocks()
   check(!I::parallel_loops_requested(), "serial loops outside every scope");
 }
 
+// interpolate_at_vertex_queries() walks in fixed blocks of the vertex order:
+// on a planar grid of more than two blocks of vertices, with a breadth-first
+// order (walks from the parent's answer) and without parents (from the
+// previous answer), an affine field is reproduced at every query inside the
+// square, the queries outside get the outside map and are counted, and the
+// result has the same bits on 0, 1 and 2 threads.
+void test_planar_interpolation_in_blocks()
+{
+  const int g = 120; // 14,641 vertices: four blocks
+  I::Matrix P((g + 1) * (g + 1), 2);
+  for(int j = 0; j <= g; ++j)
+    for(int i = 0; i <= g; ++i) P.row(j * (g + 1) + i) << double(i) / g, double(j) / g;
+  I::Index_matrix F(2 * g * g, 3);
+  for(int j = 0, k = 0; j < g; ++j)
+    for(int i = 0; i < g; ++i) {
+      const int v = j * (g + 1) + i;
+      F.row(k++) << v, v + 1, v + g + 2;
+      F.row(k++) << v, v + g + 2, v + g + 1;
+    }
+  const Eigen::Index n = P.rows();
+  I::Matrix values(n, 2), queries(n, 2);
+  for(Eigen::Index v = 0; v < n; ++v) {
+    values.row(v) << 2 * P(v, 0) - 3 * P(v, 1) + 1, 0.5 * P(v, 0) + P(v, 1);
+    // a smooth displacement of up to 0.03: some queries leave the unit square
+    queries.row(v) << P(v, 0) + 0.03 * std::sin(7 * P(v, 1)), P(v, 1) + 0.03 * std::cos(5 * P(v, 0));
+  }
+  std::vector<Eigen::Index> order, parent;
+  I::breadth_first_vertex_order(F, n, order, parent);
+  const Eigen::Vector2d far_value(-7, -7);
+  auto outside_map = [&](const Eigen::Vector2d&) { return far_value; };
+  for(const bool with_parents : {true, false}) {
+    const std::vector<Eigen::Index> no_parent;
+    const std::vector<Eigen::Index>& parents = with_parents ? parent : no_parent;
+    I::Matrix out[3];
+    std::size_t outside[3];
+    for(int threads = 0; threads < 3; ++threads)
+      run_on(threads, [&] {
+        const I::Concurrency_scope scope(threads > 0);
+        const I::Planar_point_locator locator(P, F);
+        out[threads] = I::interpolate_at_vertex_queries(locator, values, queries, order, parents, outside_map,
+                                                         &outside[threads]);
+      });
+    const std::string what = with_parents ? " (walks from the parent)" : " (walks from the previous answer)";
+    std::size_t expected_outside = 0;
+    double error = 0;
+    bool outside_rows_right = true;
+    for(Eigen::Index v = 0; v < n; ++v) {
+      const double x = queries(v, 0), y = queries(v, 1);
+      if(x < 0 || x > 1 || y < 0 || y > 1) {
+        ++expected_outside;
+        outside_rows_right = outside_rows_right && out[0].row(v) == far_value.transpose();
+        continue;
+      }
+      error = std::max(error, std::abs(out[0](v, 0) - (2 * x - 3 * y + 1)));
+      error = std::max(error, std::abs(out[0](v, 1) - (0.5 * x + y)));
+    }
+    check(expected_outside > 0 && outside[0] == expected_outside && outside_rows_right,
+          "interpolate_at_vertex_queries: the queries outside the domain get the outside map and are counted" + what);
+    check(error < 1e-12, "interpolate_at_vertex_queries: an affine field is reproduced inside the domain" + what +
+                           " (max error " + std::to_string(error) + ")");
+    check(out[1] == out[0] && out[2] == out[0] && outside[1] == outside[0] && outside[2] == outside[0],
+          "interpolate_at_vertex_queries: the same bits on 0, 1 and 2 threads" + what);
+  }
+}
+
 } // namespace
 
 int main()
@@ -140,6 +206,7 @@ int main()
   if(!I::parallel_loops_available())
     std::cout << "built without TBB: Parallel_tag runs the serial loops" << std::endl;
   test_building_blocks();
+  test_planar_interpolation_in_blocks();
 
   // 20,480 faces: five blocks of the face loops, more than one of the vertex loops
   const Mesh sphere = bumpy(5);

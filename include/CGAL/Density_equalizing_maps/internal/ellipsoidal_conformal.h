@@ -361,6 +361,7 @@ public:
     m_chart = ellipsoidal_chart(X, F, poles, flash);
     m_P = to_planar(m_chart.p);
     m_open_assembler.build(m_chart.open_faces, X.rows());
+    m_open_adjacency = std::make_shared<const Walk_adjacency>(m_chart.open_faces, X.rows());
     m_psi_solver = clone_with_fast_ordering(prototype); // one factorization per radii
     breadth_first_vertex_order(F, X.rows(), m_order, m_parent);
     // Pinned set of psi (ALGORITHMS 5.7 [Rec]): the north face, the
@@ -396,6 +397,13 @@ public:
   const Spd_solver& prototype() const { return *m_prototype; }
   const Flash_result& flash() const { return m_flash; }
 
+  /// A locator of the chart's triangulation F' at the positions Q (n x 2),
+  /// sharing the walk adjacency computed once for all of them.
+  Planar_point_locator open_locator(const Matrix& Q) const
+  {
+    return Planar_point_locator(Q, m_chart.open_faces, m_open_adjacency);
+  }
+
   /// psi_t = psi' o A for the chart dilated by t (see Conformal_correction):
   /// psi' = LBS(nu), nu the Beltrami coefficient of (P^N_abc)^{-1} o A^{-1},
   /// on the triangulation (A(t p), F'), the identity on the pinned set (plus the
@@ -430,7 +438,7 @@ public:
        !c.image.allFinite())
       c.image = c.source; // cannot happen for a valid chart; the identity keeps the map defined
     // normalization psi'(0) = 0: the origin is the image of the south pole face
-    const Planar_point_locator source_locator(c.source, Fo);
+    const Planar_point_locator source_locator = open_locator(c.source);
     const Eigen::Vector2d origin = Eigen::Vector2d::Zero();
     const Eigen::Index f = source_locator.locate(origin, source_locator.incident_face(m_chart.poles[1]));
     if(f >= 0) {
@@ -467,7 +475,7 @@ public:
   Matrix inverse_correction(const Conformal_correction& c, const Matrix& queries,
                             std::size_t* outside = nullptr) const
   {
-    const Planar_point_locator locator(c.image, m_chart.open_faces);
+    const Planar_point_locator locator = open_locator(c.image);
     return inverse_correction(locator, c, queries, outside);
   }
 
@@ -475,7 +483,7 @@ public:
   Matrix correction_at(const Conformal_correction& c, const Matrix& points,
                        const std::vector<Eigen::Index>& start_vertices) const
   {
-    const Planar_point_locator locator(c.source, m_chart.open_faces);
+    const Planar_point_locator locator = open_locator(c.source);
     Matrix out(points.rows(), 2);
     const Index_matrix& Fo = m_chart.open_faces;
     for(Eigen::Index k = 0; k < points.rows(); ++k) {
@@ -496,6 +504,7 @@ private:
   Ellipsoidal_chart m_chart;
   Matrix m_P;
   Face_block_assembler m_open_assembler;
+  std::shared_ptr<const Walk_adjacency> m_open_adjacency;
   std::unique_ptr<Spd_solver> m_psi_solver;
   std::vector<Eigen::Index> m_order, m_parent;
   std::vector<char> m_fixed;
@@ -618,7 +627,7 @@ inline Ellipsoidal_evaluation evaluate_ellipsoidal_conformal(const Ellipsoidal_m
   Ellipsoidal_evaluation e;
   e.radii = radii;
   Conformal_correction psi = mapper.conformal_correction(radii, 1.);
-  const Planar_point_locator locator(psi.image, mapper.chart().open_faces);
+  const Planar_point_locator locator = mapper.open_locator(psi.image);
   const Matrix& P = mapper.planar_chart();
   auto map_at = [&](double t) {
     const Matrix query = t * P;
@@ -847,7 +856,7 @@ inline Quasiconformal_result ellipsoidal_quasiconformal(const Ellipsoidal_mapper
   // The composition with the piecewise-linear psi^{-1} can flip a very thin
   // triangle even when Phi is fold-free: the loop also runs (and keeps
   // smoothing) while the composed map folds on the ellipsoid.
-  const Planar_point_locator image_locator(psi.image, mapper.chart().open_faces);
+  const Planar_point_locator image_locator = mapper.open_locator(psi.image);
   auto compose = [&](const Matrix& W) {
     return inverse_ellipsoidal_chart(mapper.inverse_correction(image_locator, psi, W), radii);
   };

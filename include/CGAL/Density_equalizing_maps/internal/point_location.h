@@ -40,14 +40,17 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <memory>
+#include <numeric>
 #include <vector>
 
 namespace CGAL {
 namespace Density_equalizing_maps {
 namespace internal {
 
-/// Face adjacency across edges (see face_neighbors()).
-using Face_neighbor_matrix = Eigen::Matrix<Eigen::Index, Eigen::Dynamic, 3>;
+/// Face adjacency across edges (see face_neighbors()); int, as the faces' own
+/// indices (Index_matrix), which halves what a walk keeps per face.
+using Face_neighbor_matrix = Eigen::Matrix<int, Eigen::Dynamic, 3>;
 
 // ---------------------------------------------------------------------------
 // Mesh traversal and planar point location
@@ -104,143 +107,20 @@ inline void breadth_first_vertex_order(const Index_matrix& F, Eigen::Index n, st
 inline Face_neighbor_matrix face_neighbors(const Index_matrix& F, const Vertex_faces& vf)
 {
   Face_neighbor_matrix N(F.rows(), 3);
-  for(Eigen::Index k = 0; k < F.rows(); ++k)
-    for(int a = 0; a < 3; ++a) {
-      const int b = F(k, (a + 1) % 3), c = F(k, (a + 2) % 3);
-      N(k, a) = -1;
-      for(Eigen::Index s = vf.begin(c); s < vf.end(c); ++s) { // the face with the directed edge (c, b)
-        const Eigen::Index g = vf.faces[s];
-        if(g == k) continue;
-        for(int e = 0; e < 3; ++e)
-          if(F(g, e) == c && F(g, (e + 1) % 3) == b) N(k, a) = g;
-      }
-    }
-  return N;
-}
-
-/// Point location in a planar triangulation (n x 2 positions, faces that may
-/// leave some vertices unused) by a randomized visibility walk with exact
-/// orientation predicates; brute force if the walk does not settle (possible
-/// only where the triangulation folds). The domain is assumed convex (it is
-/// the outer triangle of a punctured sphere chart), so leaving it through a
-/// boundary edge means the point lies outside.
-class Planar_point_locator
-{
-public:
-  Planar_point_locator(const Matrix& Q, const Index_matrix& F) : m_F(F)
-  {
-    const Eigen::Index n = Q.rows();
-    m_P.reserve(static_cast<std::size_t>(n));
-    for(Eigen::Index i = 0; i < n; ++i) m_P.emplace_back(Q(i, 0), Q(i, 1));
-    const Vertex_faces vf(F, n);
-    m_vertex_face.assign(static_cast<std::size_t>(n), -1);
-    for(Eigen::Index i = 0; i < n; ++i)
-      if(vf.end(i) > vf.begin(i)) m_vertex_face[i] = vf.faces[vf.begin(i)];
-    m_neighbor = face_neighbors(F, vf);
-    long balance = 0;
-    for(Eigen::Index k = 0; k < F.rows(); ++k)
-      balance += static_cast<int>(CGAL::orientation(m_P[F(k, 0)], m_P[F(k, 1)], m_P[F(k, 2)]));
-    m_sign = balance >= 0 ? 1 : -1;
-    m_max_steps = static_cast<std::size_t>(20 * std::sqrt(double(F.rows())) + 1000);
-  }
-
-  /// A face incident to vertex i (-1 if none).
-  Eigen::Index incident_face(Eigen::Index i) const { return m_vertex_face[i]; }
-
-  /// The face containing q (on its closure), or -1 if q is outside the domain.
-  Eigen::Index locate(const Eigen::Vector2d& q2, Eigen::Index start) const
-  {
-    const Epick::Point_2 q(q2.x(), q2.y());
-    Eigen::Index f = start >= 0 ? start : 0;
-    for(std::size_t step = 0; step < m_max_steps; ++step) {
-      m_rng = m_rng * 6364136223846793005ULL + 1442695040888963407ULL;
-      const int r = static_cast<int>((m_rng >> 33) % 3);
-      bool moved = false;
-      for(int t = 0; t < 3 && !moved; ++t) {
-        const int a = (r + t) % 3;
-        const int b = m_F(f, (a + 1) % 3), c = m_F(f, (a + 2) % 3);
-        if(m_sign * static_cast<int>(CGAL::orientation(m_P[b], m_P[c], q)) < 0) {
-          const Eigen::Index g = m_neighbor(f, a);
-          if(g < 0) return -1;
-          f = g;
-          moved = true;
+  parallel_for(F.rows(), [&](Eigen::Index first, Eigen::Index last) {
+    for(Eigen::Index k = first; k < last; ++k)
+      for(int a = 0; a < 3; ++a) {
+        const int b = F(k, (a + 1) % 3), c = F(k, (a + 2) % 3);
+        N(k, a) = -1;
+        for(Eigen::Index s = vf.begin(c); s < vf.end(c); ++s) { // the face with the directed edge (c, b)
+          const Eigen::Index g = vf.faces[s];
+          if(g == k) continue;
+          for(int e = 0; e < 3; ++e)
+            if(F(g, e) == c && F(g, (e + 1) % 3) == b) N(k, a) = static_cast<int>(g);
         }
       }
-      if(!moved) return f;
-    }
-    // The walk did not settle (folded region): search every face.
-    for(Eigen::Index k = 0; k < m_F.rows(); ++k) {
-      bool inside = true;
-      for(int a = 0; a < 3 && inside; ++a)
-        inside = m_sign * static_cast<int>(CGAL::orientation(m_P[m_F(k, (a + 1) % 3)], m_P[m_F(k, (a + 2) % 3)], q)) >= 0;
-      if(inside) return k;
-    }
-    return -1;
-  }
-
-  /// Barycentric coordinates of q in face f (clamped to be non-negative).
-  Eigen::Vector3d barycentric(Eigen::Index f, const Eigen::Vector2d& q) const
-  {
-    Eigen::Vector2d v[3];
-    for(int a = 0; a < 3; ++a) v[a] = Eigen::Vector2d(m_P[m_F(f, a)].x(), m_P[m_F(f, a)].y());
-    auto area2 = [](const Eigen::Vector2d& x, const Eigen::Vector2d& y, const Eigen::Vector2d& z) {
-      return (y.x() - x.x()) * (z.y() - x.y()) - (y.y() - x.y()) * (z.x() - x.x());
-    };
-    Eigen::Vector3d l(std::max(0., m_sign * area2(q, v[1], v[2])), std::max(0., m_sign * area2(v[0], q, v[2])),
-                      std::max(0., m_sign * area2(v[0], v[1], q)));
-    const double s = l.sum();
-    if(!(s > 0) || !std::isfinite(s)) return Eigen::Vector3d::Constant(1. / 3);
-    return l / s;
-  }
-
-  const Index_matrix& faces() const { return m_F; }
-
-private:
-  const Index_matrix& m_F;
-  std::vector<Epick::Point_2> m_P;
-  std::vector<Eigen::Index> m_vertex_face;
-  Face_neighbor_matrix m_neighbor;
-  int m_sign = 1;
-  std::size_t m_max_steps = 1000;
-  mutable std::uint64_t m_rng = 0x853c49e6748fea9bULL;
-};
-
-/// For every vertex i of `order`, the values (n x 2) interpolated at
-/// queries[i] in the located face of `locator` (rows not in `order` are left
-/// unset); where queries[i] lies outside the domain, `outside_map(query)` (the
-/// maps interpolated here are known in closed form on the domain's boundary,
-/// and this extends them continuously). `order` is breadth-first and each walk
-/// starts at the parent's face; with an empty `parent` (a subset of the
-/// vertices, ordered so that consecutive ones are close) at the previous answer.
-template <class OutsideMap>
-Matrix interpolate_at_vertex_queries(const Planar_point_locator& locator, const Matrix& values,
-                                     const Matrix& queries, const std::vector<Eigen::Index>& order,
-                                     const std::vector<Eigen::Index>& parent, OutsideMap outside_map,
-                                     std::size_t* outside = nullptr)
-{
-  const Eigen::Index n = queries.rows();
-  const Index_matrix& F = locator.faces();
-  Matrix out(n, 2);
-  std::vector<Eigen::Index> located(static_cast<std::size_t>(n), -1);
-  std::size_t n_out = 0;
-  Eigen::Index last = -1;
-  for(const Eigen::Index i : order) {
-    // start next to the parent's answer; after a query outside the domain,
-    // next to the last located one (the vertex's own face can be far from the
-    // query when the chart is dilated)
-    Eigen::Index start = !parent.empty() && parent[i] >= 0 ? located[parent[i]] : -1;
-    if(start < 0) start = last;
-    if(start < 0) start = locator.incident_face(i);
-    const Eigen::Vector2d q(queries(i, 0), queries(i, 1));
-    const Eigen::Index f = locator.locate(q, start);
-    located[i] = f;
-    if(f < 0) { out.row(i) = outside_map(q).transpose(); ++n_out; continue; }
-    last = f;
-    const Eigen::Vector3d l = locator.barycentric(f, q);
-    out.row(i) = l[0] * values.row(F(f, 0)) + l[1] * values.row(F(f, 1)) + l[2] * values.row(F(f, 2));
-  }
-  if(outside) *outside = n_out;
-  return out;
+  });
+  return N;
 }
 
 // ---------------------------------------------------------------------------
@@ -275,6 +155,172 @@ inline Eigen::Vector3d normalized_barycentric(Eigen::Vector3d l)
   const double s = l.sum();
   if(!(s > 0) || !std::isfinite(s)) return Eigen::Vector3d::Constant(1. / 3);
   return l / s;
+}
+
+/// What a walk needs of a triangulation besides its positions: a face at each
+/// vertex (-1 for an unused vertex) and the neighbours across the edges
+/// (face_neighbors()). It depends on the faces only, so a triangulation
+/// located in at several positions (FECM's chart before and after its
+/// correction, for every radii) computes it once.
+struct Walk_adjacency
+{
+  std::vector<int> vertex_face;
+  Face_neighbor_matrix neighbor;
+
+  Walk_adjacency() = default;
+  Walk_adjacency(const Index_matrix& F, Eigen::Index n)
+  {
+    const Vertex_faces vf(F, n);
+    vertex_face.assign(static_cast<std::size_t>(n), -1);
+    for(Eigen::Index i = 0; i < n; ++i)
+      if(vf.end(i) > vf.begin(i)) vertex_face[i] = static_cast<int>(vf.faces[vf.begin(i)]);
+    neighbor = face_neighbors(F, vf);
+  }
+};
+
+/// Point location in a planar triangulation (n x 2 positions, faces that may
+/// leave some vertices unused) by a randomized visibility walk with exact
+/// orientation predicates; brute force if the walk does not settle (possible
+/// only where the triangulation folds). The domain is assumed convex (it is
+/// the outer triangle of a punctured sphere chart), so leaving it through a
+/// boundary edge means the point lies outside. Walks that run side by side
+/// each pass their own Walk_random; the others share the locator's.
+class Planar_point_locator
+{
+public:
+  Planar_point_locator(const Matrix& Q, const Index_matrix& F)
+    : Planar_point_locator(Q, F, std::make_shared<const Walk_adjacency>(F, Q.rows()))
+  {}
+
+  /// With the adjacency of F computed beforehand (shared, not copied).
+  Planar_point_locator(const Matrix& Q, const Index_matrix& F, std::shared_ptr<const Walk_adjacency> adjacency)
+    : m_F(F), m_adjacency(std::move(adjacency)), m_max_steps(walk_step_budget(F.rows()))
+  {
+    const Eigen::Index n = Q.rows();
+    m_P.reserve(static_cast<std::size_t>(n));
+    for(Eigen::Index i = 0; i < n; ++i) m_P.emplace_back(Q(i, 0), Q(i, 1));
+    const double balance = parallel_sum(F.rows(), [&](Eigen::Index k) {
+      return double(static_cast<int>(CGAL::orientation(m_P[F(k, 0)], m_P[F(k, 1)], m_P[F(k, 2)])));
+    });
+    m_sign = balance >= 0 ? 1 : -1;
+  }
+
+  /// A face incident to vertex i (-1 if none).
+  Eigen::Index incident_face(Eigen::Index i) const { return m_adjacency->vertex_face[i]; }
+
+  /// The face containing q (on its closure), or -1 if q is outside the domain.
+  Eigen::Index locate(const Eigen::Vector2d& q, Eigen::Index start) const { return locate(q, start, m_random); }
+
+  /// The same with the walk's own random edge order (for walks side by side).
+  Eigen::Index locate(const Eigen::Vector2d& q2, Eigen::Index start, Walk_random& random) const
+  {
+    const Epick::Point_2 q(q2.x(), q2.y());
+    const Face_neighbor_matrix& neighbor = m_adjacency->neighbor;
+    Eigen::Index f = start >= 0 ? start : 0;
+    for(std::size_t step = 0; step < m_max_steps; ++step) {
+      const int r = random.next_of_three();
+      bool moved = false;
+      for(int t = 0; t < 3 && !moved; ++t) {
+        const int a = (r + t) % 3;
+        if(side_of_edge(f, a, q) < 0) {
+          const Eigen::Index g = neighbor(f, a);
+          if(g < 0) return -1;
+          f = g;
+          moved = true;
+        }
+      }
+      if(!moved) return f;
+    }
+    // The walk did not settle (folded region): search every face.
+    for(Eigen::Index k = 0; k < m_F.rows(); ++k)
+      if(side_of_edge(k, 0, q) >= 0 && side_of_edge(k, 1, q) >= 0 && side_of_edge(k, 2, q) >= 0) return k;
+    return -1;
+  }
+
+  /// Barycentric coordinates of q in face f (clamped to be non-negative).
+  Eigen::Vector3d barycentric(Eigen::Index f, const Eigen::Vector2d& q) const
+  {
+    Eigen::Vector2d v[3];
+    for(int a = 0; a < 3; ++a) v[a] = Eigen::Vector2d(m_P[m_F(f, a)].x(), m_P[m_F(f, a)].y());
+    auto area2 = [](const Eigen::Vector2d& x, const Eigen::Vector2d& y, const Eigen::Vector2d& z) {
+      return (y.x() - x.x()) * (z.y() - x.y()) - (y.y() - x.y()) * (z.x() - x.x());
+    };
+    return normalized_barycentric(
+      Eigen::Vector3d(m_sign * area2(q, v[1], v[2]), m_sign * area2(v[0], q, v[2]), m_sign * area2(v[0], v[1], q)));
+  }
+
+  const Index_matrix& faces() const { return m_F; }
+
+private:
+  /// Sign (relative to the triangulation's orientation) of q against the line
+  /// of the edge of f opposite corner a: negative means q is beyond it.
+  int side_of_edge(Eigen::Index f, int a, const Epick::Point_2& q) const
+  {
+    return m_sign * static_cast<int>(CGAL::orientation(m_P[m_F(f, (a + 1) % 3)], m_P[m_F(f, (a + 2) % 3)], q));
+  }
+
+  const Index_matrix& m_F;
+  std::shared_ptr<const Walk_adjacency> m_adjacency;
+  std::vector<Epick::Point_2> m_P;
+  int m_sign = 1;
+  std::size_t m_max_steps = 1000;
+  mutable Walk_random m_random;
+};
+
+/// For every vertex i of `order`, the values (n x 2) interpolated at
+/// queries[i] in the located face of `locator` (rows not in `order` are left
+/// unset); where queries[i] lies outside the domain, `outside_map(query)` (the
+/// maps interpolated here are known in closed form on the domain's boundary,
+/// and this extends them continuously). `order` is breadth-first and each walk
+/// starts at the parent's face; with an empty `parent` (a subset of the
+/// vertices, ordered so that consecutive ones are close) at the previous answer.
+/// The walks run in fixed blocks of `order` (parallel_block), in parallel when
+/// asked for: a block starts from its own first answer, never from another
+/// block's, and has its own random edge order, so the faces found, hence the
+/// values, are the same on any number of threads.
+template <class OutsideMap>
+Matrix interpolate_at_vertex_queries(const Planar_point_locator& locator, const Matrix& values,
+                                     const Matrix& queries, const std::vector<Eigen::Index>& order,
+                                     const std::vector<Eigen::Index>& parent, OutsideMap outside_map,
+                                     std::size_t* outside = nullptr)
+{
+  const Eigen::Index n = queries.rows(), m = Eigen::Index(order.size());
+  const Index_matrix& F = locator.faces();
+  Matrix out(n, 2);
+  std::vector<Eigen::Index> located(static_cast<std::size_t>(n), -1);
+  std::vector<Eigen::Index> position; // of each vertex in `order`: is its parent in the same block?
+  if(!parent.empty()) {
+    position.assign(static_cast<std::size_t>(n), -1);
+    for(Eigen::Index p = 0; p < m; ++p) position[order[p]] = p;
+  }
+  std::vector<std::size_t> block_outside(static_cast<std::size_t>((m + parallel_block - 1) / parallel_block), 0);
+  for_each_fixed_block(m, [&](Eigen::Index block, Eigen::Index begin, Eigen::Index end) {
+    Walk_random random;
+    Eigen::Index last = -1;
+    for(Eigen::Index p = begin; p < end; ++p) {
+      const Eigen::Index i = order[p];
+      // start next to the parent's answer; after a query outside the domain,
+      // next to the last located one (the vertex's own face can be far from
+      // the query when the chart is dilated)
+      Eigen::Index start = -1;
+      if(!parent.empty() && parent[i] >= 0 && position[parent[i]] >= begin) start = located[parent[i]];
+      if(start < 0) start = last;
+      if(start < 0) start = locator.incident_face(i);
+      const Eigen::Vector2d q(queries(i, 0), queries(i, 1));
+      const Eigen::Index f = locator.locate(q, start, random);
+      located[i] = f;
+      if(f < 0) {
+        out.row(i) = outside_map(q).transpose();
+        ++block_outside[static_cast<std::size_t>(block)];
+        continue;
+      }
+      last = f;
+      const Eigen::Vector3d l = locator.barycentric(f, q);
+      out.row(i) = l[0] * values.row(F(f, 0)) + l[1] * values.row(F(f, 1)) + l[2] * values.row(F(f, 2));
+    }
+  });
+  if(outside) *outside = std::accumulate(block_outside.begin(), block_outside.end(), std::size_t(0));
+  return out;
 }
 
 // ---------------------------------------------------------------------------
