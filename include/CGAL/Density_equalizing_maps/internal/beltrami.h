@@ -174,11 +174,16 @@ inline Vector beltrami_magnitude_3d(const Matrix& X, const Matrix& Y, const Inde
   return m;
 }
 
-/// Shrinks |mu| to at most `bound` (< 1) keeping the argument.
+/// mu with its modulus shrunk to at most `bound` (< 1), its argument kept.
+inline Complex truncated_beltrami(Complex mu, double bound)
+{
+  return std::norm(mu) > bound * bound ? mu * (bound / std::abs(mu)) : mu;
+}
+
+/// truncated_beltrami() of every entry.
 inline void truncate_beltrami(Complex_vector& mu, double bound)
 {
-  for(Eigen::Index k = 0; k < mu.size(); ++k)
-    if(std::norm(mu[k]) > bound * bound) mu[k] *= bound / std::abs(mu[k]);
+  for(Eigen::Index k = 0; k < mu.size(); ++k) mu[k] = truncated_beltrami(mu[k], bound);
 }
 
 /// Local LBS stiffness blocks (m x 9) of grad.(A(mu) grad) on the source chart P.

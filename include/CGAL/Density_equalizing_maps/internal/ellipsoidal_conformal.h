@@ -416,14 +416,18 @@ public:
     c.radii = radii;
     c.dilation = t;
     c.source.resize(n, 2);
-    for(Eigen::Index i = 0; i < n; ++i)
-      c.source.row(i) = radial_chart_point(t * m_P.row(i).transpose(), radii).transpose();
     Complex_vector vertex_nu(n);
-    for(Eigen::Index i = 0; i < n; ++i) vertex_nu[i] = radial_parameterization_beltrami(c.source.row(i).transpose(), radii);
+    parallel_for(n, [&](Eigen::Index begin, Eigen::Index end) {
+      for(Eigen::Index i = begin; i < end; ++i) {
+        c.source.row(i) = radial_chart_point(t * m_P.row(i).transpose(), radii).transpose();
+        vertex_nu[i] = radial_parameterization_beltrami(c.source.row(i).transpose(), radii);
+      }
+    });
     Complex_vector nu(Fo.rows());
-    for(Eigen::Index k = 0; k < Fo.rows(); ++k) // paper eq. 37: mean of the corner values
-      nu[k] = (vertex_nu[Fo(k, 0)] + vertex_nu[Fo(k, 1)] + vertex_nu[Fo(k, 2)]) / 3.;
-    truncate_beltrami(nu, 0.999);
+    parallel_for(Fo.rows(), [&](Eigen::Index begin, Eigen::Index end) {
+      for(Eigen::Index k = begin; k < end; ++k) // paper eq. 37: mean of the corner values
+        nu[k] = truncated_beltrami((vertex_nu[Fo(k, 0)] + vertex_nu[Fo(k, 1)] + vertex_nu[Fo(k, 2)]) / 3., 0.999);
+    });
     std::vector<char> fixed = m_fixed;
     {
       const std::vector<int> o = planar_orientations(c.source, Fo);
@@ -544,8 +548,10 @@ inline std::size_t repair_folded_ellipsoidal_map(const Flash_result& flash, cons
 inline Matrix inverse_ellipsoidal_chart(const Matrix& P, const Eigen::Vector3d& radii)
 {
   Matrix f(P.rows(), 3);
-  for(Eigen::Index i = 0; i < P.rows(); ++i)
-    f.row(i) = inverse_ellipsoidal_north_stereographic(Complex(P(i, 0), P(i, 1)), radii).transpose();
+  parallel_for(P.rows(), [&](Eigen::Index begin, Eigen::Index end) {
+    for(Eigen::Index i = begin; i < end; ++i)
+      f.row(i) = inverse_ellipsoidal_north_stereographic(Complex(P(i, 0), P(i, 1)), radii).transpose();
+  });
   return f;
 }
 
