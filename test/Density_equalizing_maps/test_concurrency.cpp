@@ -196,6 +196,20 @@ void test_planar_interpolation_in_blocks()
                            " (max error " + std::to_string(error) + ")");
     check(out[1] == out[0] && out[2] == out[0] && outside[1] == outside[0] && outside[2] == outside[0],
           "interpolate_at_vertex_queries: the same bits on 0, 1 and 2 threads" + what);
+    if(!with_parents) { // the same walks on the queries gathered in walk order
+      I::Matrix Q(n, 2);
+      for(Eigen::Index p = 0; p < n; ++p) Q.row(p) = queries.row(order[p]);
+      I::Matrix at_points;
+      run_on(2, [&] {
+        const I::Concurrency_scope scope(true);
+        const I::Planar_point_locator locator(P, F);
+        at_points = I::interpolate_at_points(locator, values, Q, [&](Eigen::Index p) { return order[p]; },
+                                             outside_map);
+      });
+      bool same = true;
+      for(Eigen::Index p = 0; p < n; ++p) same = same && at_points.row(p) == out[0].row(order[p]);
+      check(same, "interpolate_at_points: the values of the per-vertex walks, row by row");
+    }
   }
 }
 

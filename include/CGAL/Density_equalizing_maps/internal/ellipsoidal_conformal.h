@@ -461,18 +461,22 @@ public:
   Matrix inverse_correction(const Planar_point_locator& image_locator, const Conformal_correction& c,
                             const Matrix& queries, std::size_t* outside = nullptr) const
   {
-    return inverse_correction(image_locator, c, queries, m_order, m_parent, outside);
+    Matrix pre = interpolate_at_vertex_queries(image_locator, c.source, queries, m_order, m_parent,
+                                               Outside_inverse_correction{c.dilation, c.far_offset}, outside);
+    to_chart_coordinates(c, pre);
+    return pre;
   }
 
-  /// The same for the vertices of `order` only (see interpolate_at_vertex_queries).
-  Matrix inverse_correction(const Planar_point_locator& image_locator, const Conformal_correction& c,
-                            const Matrix& queries, const std::vector<Eigen::Index>& order,
-                            const std::vector<Eigen::Index>& parent, std::size_t* outside = nullptr) const
+  /// psi_t^{-1} at the points Q (m x 2, undilated image coordinates, each row
+  /// next to the one before, as along the rings of a sample), in undilated
+  /// chart coordinates; a block's first walk starts at a face of vertex
+  /// start_vertices[p] (see interpolate_at_points()).
+  Matrix inverse_correction_at_points(const Planar_point_locator& image_locator, const Conformal_correction& c,
+                                      const Matrix& Q, const std::vector<Eigen::Index>& start_vertices) const
   {
-    Matrix pre = interpolate_at_vertex_queries(image_locator, c.source, queries, order, parent,
-                                               Outside_inverse_correction{c.dilation, c.far_offset}, outside);
-    for(const Eigen::Index i : order)
-      pre.row(i) = inverse_radial_chart_point(pre.row(i).transpose(), c.radii).transpose() / c.dilation;
+    Matrix pre = interpolate_at_points(image_locator, c.source, Q, [&](Eigen::Index p) { return start_vertices[p]; },
+                                       Outside_inverse_correction{c.dilation, c.far_offset});
+    to_chart_coordinates(c, pre);
     return pre;
   }
 
@@ -489,18 +493,27 @@ public:
   {
     const Planar_point_locator locator = open_locator(c.source);
     Matrix out(points.rows(), 2);
-    const Index_matrix& Fo = m_chart.open_faces;
+    auto beyond_outer_triangle = [&](const Eigen::Vector2d& q) -> Eigen::Vector2d {
+      return (q + c.far_offset) / c.dilation;
+    };
     for(Eigen::Index k = 0; k < points.rows(); ++k) {
       const Eigen::Vector2d q = radial_chart_point(c.dilation * points.row(k).transpose(), c.radii);
       const Eigen::Index f = locator.locate(q, locator.incident_face(start_vertices[k]));
-      if(f < 0) { out.row(k) = ((q + c.far_offset) / c.dilation).transpose(); continue; }
-      const Eigen::Vector3d l = locator.barycentric(f, q);
-      out.row(k) = l[0] * c.image.row(Fo(f, 0)) + l[1] * c.image.row(Fo(f, 1)) + l[2] * c.image.row(Fo(f, 2));
+      out.row(k) = interpolated_value(locator, c.image, f, q, beyond_outer_triangle);
     }
     return out;
   }
 
 private:
+  /// Rows of A(t p) to chart points p: A^{-1}, then the dilation undone.
+  static void to_chart_coordinates(const Conformal_correction& c, Matrix& pre)
+  {
+    parallel_for(pre.rows(), [&](Eigen::Index begin, Eigen::Index end) {
+      for(Eigen::Index i = begin; i < end; ++i)
+        pre.row(i) = inverse_radial_chart_point(pre.row(i).transpose(), c.radii).transpose() / c.dilation;
+    });
+  }
+
   const Matrix& m_X;
   const Index_matrix& m_F;
   std::unique_ptr<Spd_solver> m_prototype;
@@ -650,17 +663,14 @@ inline Ellipsoidal_evaluation evaluate_ellipsoidal_conformal(const Ellipsoidal_m
     std::vector<Eigen::Index> sample_order; // along the rings, so consecutive walks start next to each other
     for(const Eigen::Index i : mapper.order())
       if(sample.uses_vertex[i]) sample_order.push_back(i);
-    const std::vector<Eigen::Index> no_parent;
+    // the trials touch the sample's vertices only, numbered along the rings
+    const Index_matrix sample_F = faces_in_sample_numbering(sample, sample_order, P.rows());
+    Matrix sample_P(Eigen::Index(sample_order.size()), 2);
+    for(Eigen::Index p = 0; p < sample_P.rows(); ++p) sample_P.row(p) = P.row(sample_order[p]);
     double best_sample_energy = std::numeric_limits<double>::infinity(), best_log_t = 0;
     auto trial = [&](double log_t) {
-      const double t = std::exp(log_t);
-      Matrix query(P.rows(), 2);
-      for(const Eigen::Index i : sample_order) query.row(i) = t * P.row(i);
-      const Matrix pre = mapper.inverse_correction(locator, psi, query, sample_order, no_parent);
-      Matrix f = Matrix::Zero(P.rows(), 3);
-      for(const Eigen::Index i : sample_order)
-        f.row(i) = inverse_ellipsoidal_north_stereographic(Complex(pre(i, 0), pre(i, 1)), radii).transpose();
-      const double E = energy(sample.source_area, f, sample.F);
+      const Matrix pre = mapper.inverse_correction_at_points(locator, psi, std::exp(log_t) * sample_P, sample_order);
+      const double E = energy(sample.source_area, inverse_ellipsoidal_chart(pre, radii), sample_F);
       if(E < best_sample_energy) { best_sample_energy = E; best_log_t = log_t; }
       return E;
     };

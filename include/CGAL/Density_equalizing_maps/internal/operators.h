@@ -81,6 +81,21 @@ inline Face_sample face_sample(const Index_matrix& F, const Vector& source_area,
   return smp;
 }
 
+/// The sample's faces with each vertex numbered by its position in
+/// `vertices` (every vertex the sample uses, in the order the caller keeps
+/// its per-vertex arrays): objectives evaluated hundreds of times then touch
+/// only the sample's vertices.
+inline Index_matrix faces_in_sample_numbering(const Face_sample& sample, const std::vector<Eigen::Index>& vertices,
+                                              Eigen::Index n)
+{
+  std::vector<int> position(static_cast<std::size_t>(n), -1);
+  for(std::size_t j = 0; j < vertices.size(); ++j) position[static_cast<std::size_t>(vertices[j])] = int(j);
+  Index_matrix F(sample.F.rows(), 3);
+  for(Eigen::Index k = 0; k < sample.F.rows(); ++k)
+    for(int c = 0; c < 3; ++c) F(k, c) = position[static_cast<std::size_t>(sample.F(k, c))];
+  return F;
+}
+
 /// Every `stride`-th face of F.
 inline Face_sample face_sample(const Index_matrix& F, const Vector& source_area, Eigen::Index n, Eigen::Index stride)
 {

@@ -267,17 +267,59 @@ private:
   mutable Walk_random m_random;
 };
 
+/// The walks of the interpolations below: the queries query_at(p), p in
+/// [0, m), located in fixed blocks of parallel_block positions (in parallel
+/// when asked for). A walk starts at the answer for position
+/// parent_position(p) when that lies earlier in the same block, else at the
+/// block's previous answer, else at fallback_start(p); found(p, face, query)
+/// receives each answer (face -1: outside the domain). A block never starts
+/// from another block's answers and has its own random edge order, so the
+/// faces found are the same on any number of threads. Returns the number of
+/// queries outside the domain.
+template <class QueryAt, class ParentPosition, class FallbackStart, class Found>
+std::size_t locate_in_fixed_blocks(const Planar_point_locator& locator, Eigen::Index m, const QueryAt& query_at,
+                                   const ParentPosition& parent_position, const FallbackStart& fallback_start,
+                                   const Found& found)
+{
+  std::vector<Eigen::Index> located(static_cast<std::size_t>(m), -1);
+  std::vector<std::size_t> block_outside(static_cast<std::size_t>((m + parallel_block - 1) / parallel_block), 0);
+  for_each_fixed_block(m, [&](Eigen::Index block, Eigen::Index begin, Eigen::Index end) {
+    Walk_random random;
+    Eigen::Index last = -1;
+    for(Eigen::Index p = begin; p < end; ++p) {
+      const Eigen::Index parent = parent_position(p);
+      Eigen::Index start = parent >= begin ? located[parent] : -1;
+      if(start < 0) start = last;
+      if(start < 0) start = fallback_start(p);
+      const Eigen::Vector2d q = query_at(p);
+      const Eigen::Index f = locator.locate(q, start, random);
+      located[p] = f;
+      found(p, f, q);
+      if(f < 0) ++block_outside[static_cast<std::size_t>(block)];
+      else last = f;
+    }
+  });
+  return std::accumulate(block_outside.begin(), block_outside.end(), std::size_t(0));
+}
+
+/// The values (n x 2, per vertex of the locator's triangulation) at q: their
+/// linear interpolation in the face f containing q, or outside_map(q) if q
+/// lies outside the domain (f = -1; the maps interpolated here are known in
+/// closed form on the domain's boundary, and this extends them continuously).
+template <class OutsideMap>
+Eigen::RowVector2d interpolated_value(const Planar_point_locator& locator, const Matrix& values, Eigen::Index f,
+                                      const Eigen::Vector2d& q, const OutsideMap& outside_map)
+{
+  if(f < 0) return outside_map(q).transpose();
+  const Index_matrix& F = locator.faces();
+  const Eigen::Vector3d l = locator.barycentric(f, q);
+  return l[0] * values.row(F(f, 0)) + l[1] * values.row(F(f, 1)) + l[2] * values.row(F(f, 2));
+}
+
 /// For every vertex i of `order`, the values (n x 2) interpolated at
-/// queries[i] in the located face of `locator` (rows not in `order` are left
-/// unset); where queries[i] lies outside the domain, `outside_map(query)` (the
-/// maps interpolated here are known in closed form on the domain's boundary,
-/// and this extends them continuously). `order` is breadth-first and each walk
-/// starts at the parent's face; with an empty `parent` (a subset of the
-/// vertices, ordered so that consecutive ones are close) at the previous answer.
-/// The walks run in fixed blocks of `order` (parallel_block), in parallel when
-/// asked for: a block starts from its own first answer, never from another
-/// block's, and has its own random edge order, so the faces found, hence the
-/// values, are the same on any number of threads.
+/// queries[i] (see interpolated_value(); rows not in `order` are left unset).
+/// `order` is breadth-first and each walk starts at the parent's answer
+/// (locate_in_fixed_blocks()); with an empty `parent`, at the previous one.
 template <class OutsideMap>
 Matrix interpolate_at_vertex_queries(const Planar_point_locator& locator, const Matrix& values,
                                      const Matrix& queries, const std::vector<Eigen::Index>& order,
@@ -285,41 +327,40 @@ Matrix interpolate_at_vertex_queries(const Planar_point_locator& locator, const 
                                      std::size_t* outside = nullptr)
 {
   const Eigen::Index n = queries.rows(), m = Eigen::Index(order.size());
-  const Index_matrix& F = locator.faces();
-  Matrix out(n, 2);
-  std::vector<Eigen::Index> located(static_cast<std::size_t>(n), -1);
-  std::vector<Eigen::Index> position; // of each vertex in `order`: is its parent in the same block?
+  std::vector<Eigen::Index> position; // of each vertex in `order`
   if(!parent.empty()) {
     position.assign(static_cast<std::size_t>(n), -1);
     for(Eigen::Index p = 0; p < m; ++p) position[order[p]] = p;
   }
-  std::vector<std::size_t> block_outside(static_cast<std::size_t>((m + parallel_block - 1) / parallel_block), 0);
-  for_each_fixed_block(m, [&](Eigen::Index block, Eigen::Index begin, Eigen::Index end) {
-    Walk_random random;
-    Eigen::Index last = -1;
-    for(Eigen::Index p = begin; p < end; ++p) {
-      const Eigen::Index i = order[p];
-      // start next to the parent's answer; after a query outside the domain,
-      // next to the last located one (the vertex's own face can be far from
-      // the query when the chart is dilated)
-      Eigen::Index start = -1;
-      if(!parent.empty() && parent[i] >= 0 && position[parent[i]] >= begin) start = located[parent[i]];
-      if(start < 0) start = last;
-      if(start < 0) start = locator.incident_face(i);
-      const Eigen::Vector2d q(queries(i, 0), queries(i, 1));
-      const Eigen::Index f = locator.locate(q, start, random);
-      located[i] = f;
-      if(f < 0) {
-        out.row(i) = outside_map(q).transpose();
-        ++block_outside[static_cast<std::size_t>(block)];
-        continue;
-      }
-      last = f;
-      const Eigen::Vector3d l = locator.barycentric(f, q);
-      out.row(i) = l[0] * values.row(F(f, 0)) + l[1] * values.row(F(f, 1)) + l[2] * values.row(F(f, 2));
-    }
-  });
-  if(outside) *outside = std::accumulate(block_outside.begin(), block_outside.end(), std::size_t(0));
+  Matrix out(n, 2);
+  const std::size_t n_out = locate_in_fixed_blocks(
+    locator, m, [&](Eigen::Index p) { return Eigen::Vector2d(queries(order[p], 0), queries(order[p], 1)); },
+    [&](Eigen::Index p) {
+      return !parent.empty() && parent[order[p]] >= 0 ? position[parent[order[p]]] : Eigen::Index(-1);
+    },
+    [&](Eigen::Index p) { return locator.incident_face(order[p]); },
+    [&](Eigen::Index p, Eigen::Index f, const Eigen::Vector2d& q) {
+      out.row(order[p]) = interpolated_value(locator, values, f, q, outside_map);
+    });
+  if(outside) *outside = n_out;
+  return out;
+}
+
+/// The values interpolated at the points Q (m x 2, row p next to row p - 1,
+/// as along the rings of a sample), each walk starting at the previous
+/// answer; a block's first walk starts at a face of vertex start_vertex(p).
+template <class StartVertex, class OutsideMap>
+Matrix interpolate_at_points(const Planar_point_locator& locator, const Matrix& values, const Matrix& Q,
+                             const StartVertex& start_vertex, OutsideMap outside_map)
+{
+  Matrix out(Q.rows(), 2);
+  locate_in_fixed_blocks(
+    locator, Q.rows(), [&](Eigen::Index p) { return Eigen::Vector2d(Q(p, 0), Q(p, 1)); },
+    [](Eigen::Index) { return Eigen::Index(-1); },
+    [&](Eigen::Index p) { return locator.incident_face(start_vertex(p)); },
+    [&](Eigen::Index p, Eigen::Index f, const Eigen::Vector2d& q) {
+      out.row(p) = interpolated_value(locator, values, f, q, outside_map);
+    });
   return out;
 }
 

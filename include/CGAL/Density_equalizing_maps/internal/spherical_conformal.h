@@ -542,15 +542,9 @@ class Moebius_area_objective
 public:
   Moebius_area_objective(const Face_sample& sample, const Complex_vector& z, Eigen::Index n)
   {
-    std::vector<int> compact(static_cast<std::size_t>(n), -1);
     m_z.resize(Eigen::Index(sample.vertices.size()));
-    for(std::size_t j = 0; j < sample.vertices.size(); ++j) {
-      compact[static_cast<std::size_t>(sample.vertices[j])] = int(j);
-      m_z[Eigen::Index(j)] = z[sample.vertices[j]];
-    }
-    m_F.resize(sample.F.rows(), 3);
-    for(Eigen::Index k = 0; k < sample.F.rows(); ++k)
-      for(int c = 0; c < 3; ++c) m_F(k, c) = compact[static_cast<std::size_t>(sample.F(k, c))];
+    for(std::size_t j = 0; j < sample.vertices.size(); ++j) m_z[Eigen::Index(j)] = z[sample.vertices[j]];
+    m_F = faces_in_sample_numbering(sample, sample.vertices, n);
     m_log_target_share = (sample.source_area / sample.source_total).array().log().matrix();
     m_image.resize(m_z.size(), 3);
     m_image_area.resize(m_F.rows());
