@@ -137,7 +137,7 @@ std::array<double, 3> bounding_box_ellipsoid_radii(const TriangleMesh& tm,
 /// triangles and can leave a large area distortion (mean |d_area| 0.82 instead of 0.42
 /// on maxplanck with the bounding-box radii). Since \f$\Phi = (P^N_{abc})^{-1} \circ \psi^{-1}\f$ is conformal, so is
 /// \f$\Phi(t\,p)\f$ for any t > 0 (a Möbius map that keeps both poles and the right
-/// vertex's direction); t is chosen by a golden-section search on log t minimizing the
+/// vertex's direction); t is chosen by Brent's search on log t minimizing the
 /// area distortion energy below. Each trial only relocates the dilated chart points in
 /// ψ's triangulation (no new linear solve).
 ///
