@@ -135,24 +135,16 @@ void test_building_blocks()
 }
 
 // interpolate_at_vertex_queries() walks in fixed blocks of the vertex order:
-// on a planar grid of more than two blocks of vertices, with a breadth-first
+// on a jittered planar grid of more than two blocks of vertices, with a breadth-first
 // order (walks from the parent's answer) and without parents (from the
 // previous answer), an affine field is reproduced at every query inside the
 // square, the queries outside get the outside map and are counted, and the
 // result has the same bits on 0, 1 and 2 threads.
 void test_planar_interpolation_in_blocks()
 {
-  const int g = 120; // 14,641 vertices: four blocks
-  I::Matrix P((g + 1) * (g + 1), 2);
-  for(int j = 0; j <= g; ++j)
-    for(int i = 0; i <= g; ++i) P.row(j * (g + 1) + i) << double(i) / g, double(j) / g;
-  I::Index_matrix F(2 * g * g, 3);
-  for(int j = 0, k = 0; j < g; ++j)
-    for(int i = 0; i < g; ++i) {
-      const int v = j * (g + 1) + i;
-      F.row(k++) << v, v + 1, v + g + 2;
-      F.row(k++) << v, v + g + 2, v + g + 1;
-    }
+  const Arrays grid = planar_grid_arrays(121); // 14,641 vertices: four blocks
+  const I::Matrix& P = grid.X;
+  const I::Index_matrix& F = grid.F;
   const Eigen::Index n = P.rows();
   I::Matrix values(n, 2), queries(n, 2);
   for(Eigen::Index v = 0; v < n; ++v) {

@@ -379,9 +379,7 @@ public:
                       [&](Eigen::Index i, Eigen::Index j) { return std::abs(m_chart.p[i]) > std::abs(m_chart.p[j]); });
     for(Eigen::Index i = 0; i < m; ++i) m_fixed[idx[i]] = 1;
     const std::vector<int> o = planar_orientations(m_P, m_chart.open_faces);
-    long balance = 0;
-    for(int s : o) balance += s;
-    m_chart_sign = balance >= 0 ? 1 : -1;
+    m_chart_sign = majority_orientation(o);
     for(Eigen::Index k = 0; k < m_chart.open_faces.rows(); ++k)
       if(o[k] != m_chart_sign)
         for(int c = 0; c < 3; ++c) m_fixed[m_chart.open_faces(k, c)] = 1;
@@ -431,9 +429,7 @@ public:
     std::vector<char> fixed = m_fixed;
     {
       const std::vector<int> o = planar_orientations(c.source, Fo);
-      long balance = 0;
-      for(int v : o) balance += v;
-      const int sign = balance >= 0 ? 1 : -1;
+      const int sign = majority_orientation(o);
       for(Eigen::Index k = 0; k < Fo.rows(); ++k)
         if(o[k] != sign)
           for(int a = 0; a < 3; ++a) fixed[Fo(k, a)] = 1;
@@ -446,9 +442,8 @@ public:
     const Eigen::Vector2d origin = Eigen::Vector2d::Zero();
     const Eigen::Index f = source_locator.locate(origin, source_locator.incident_face(m_chart.poles[1]));
     if(f >= 0) {
-      const Eigen::Vector3d l = source_locator.barycentric(f, origin);
       const Eigen::RowVector2d at_origin =
-        l[0] * c.image.row(Fo(f, 0)) + l[1] * c.image.row(Fo(f, 1)) + l[2] * c.image.row(Fo(f, 2));
+        interpolated_value(source_locator, c.image, f, origin, [](const Eigen::Vector2d& q) { return q; });
       c.image.rowwise() -= at_origin;
       c.far_offset = -at_origin.transpose();
     }

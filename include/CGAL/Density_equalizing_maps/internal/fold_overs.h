@@ -74,6 +74,15 @@ inline std::vector<int> planar_orientations(const Matrix& W, const Index_matrix&
   return o;
 }
 
+/// The orientation most faces have (+1 on a tie), from planar_orientations():
+/// the map's own sense, against which the other faces are the folded ones.
+inline int majority_orientation(const std::vector<int>& orientations)
+{
+  long balance = 0;
+  for(int o : orientations) balance += o;
+  return balance >= 0 ? 1 : -1;
+}
+
 /// Faces of a planar map whose exact orientation is not `expected` (+1 or -1).
 inline std::size_t count_planar_fold_overs(const Matrix& W, const Index_matrix& F, int expected = 1)
 {

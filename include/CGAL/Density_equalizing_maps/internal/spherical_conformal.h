@@ -168,10 +168,9 @@ inline South_chart south_chart_of(const Matrix& S, const Index_matrix& F, const 
   c.P = to_planar(p);
   c.pinned = cap.member;
   const std::vector<int> orient = planar_orientations(c.P, F);
-  long balance = 0;
-  for(int o : orient) balance += o;
+  const int sign = majority_orientation(orient);
   for(Eigen::Index k = 0; k < F.rows(); ++k)
-    if(orient[k] != (balance >= 0 ? 1 : -1))
+    if(orient[k] != sign)
       for(int a = 0; a < 3; ++a)
         if(!c.pinned[F(k, a)]) { c.pinned[F(k, a)] = 1; c.pinned_is_cap = false; }
   return c;
