@@ -21,6 +21,7 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -251,9 +252,32 @@ int main()
     const std::string one = (tmp_dir / "one_thread.off").string(), two = (tmp_dir / "two_threads.off").string();
     const Soup fine = icosphere(5); // 20,480 faces: several blocks of the parallel loops
     const std::string fine_off = write_off("fine_sphere.off", fine);
-    if(expect(dem("sdem \"" + fine_off + "\" --quiet --threads 1 --output \"" + one + "\""), 0, "sdem --threads 1") &&
-       expect(dem("sdem \"" + fine_off + "\" --quiet --threads 2 --output \"" + two + "\""), 0, "sdem --threads 2"))
+    // --threads 1 also holds OpenBLAS to one thread, whose factorizations
+    // differ in the last bits from its multithreaded ones: both runs get one
+    // BLAS thread here, so that the comparison is that of the loops.
+    const std::string one_blas_thread = "env OPENBLAS_NUM_THREADS=1";
+    auto sdem = [&](const std::string& threads, const std::string& output) {
+      return run_dem(folder, "sdem \"" + fine_off + "\" --quiet --threads " + threads + " --output \"" + output + "\"",
+                     120, one_blas_thread);
+    };
+    if(expect(sdem("1", one), 0, "sdem --threads 1") && expect(sdem("2", two), 0, "sdem --threads 2"))
       check(read_text(one) == read_text(two), "sdem --threads 1 and --threads 2 write the same file");
+
+    // --threads 1 runs on one thread, the sparse factorizations included,
+    // whatever the environment says of the BLAS and OpenMP: the mapping's CPU
+    // time (all threads; the summary line's "(Y s CPU)") is not above its
+    // wall time. OpenBLAS and CHOLMOD's OpenMP regions used to run their own
+    // threads (benchmark/RESULTS.md, "The single-threaded mode").
+    const Result r = run_dem(folder, "sdem \"" + fine_off + "\" --quiet --threads 1", 120,
+                             "env -u OPENBLAS_NUM_THREADS -u OMP_NUM_THREADS -u OMP_THREAD_LIMIT");
+    std::smatch m;
+    const std::regex times("([0-9.]+) s \\(([0-9.]+) s CPU\\)");
+    if(expect(r, 0, "sdem --threads 1 without thread variables") &&
+       check(std::regex_search(r.out, m, times), "sdem prints its wall and CPU time (" + r.out + ")")) {
+      const double wall = std::stod(m[1]), cpu = std::stod(m[2]);
+      check(cpu <= 1.02 * wall + 0.01, "sdem --threads 1: CPU time " + m[2].str() + " s within its wall time " +
+                                         m[1].str() + " s (one thread)");
+    }
   }
 
   // --- sidecar files: exit 3, the message names the line

@@ -41,17 +41,23 @@ const std::vector<Application>& applications()
 int main(int argc, char** argv)
 {
   using namespace dem_cli;
+  std::vector<std::string> args(argv + 1, argv + argc);
+  if(args.empty()) { std::cerr << usage_text(); return 2; }
+  // --threads N, for every subcommand: at most N threads, those of the
+  // parallel loops (the maps are the same on any number) and those of the
+  // sparse factorizations (OpenBLAS's, CHOLMOD's OpenMP regions); by default
+  // every core. The factorizations' pools are sized when their libraries are
+  // loaded, so dem sets their variables and starts again.
+  unsigned threads = 0;
+  if(!take_threads_option(args, threads)) return 2;
+  namespace DEMI = CGAL::Density_equalizing_maps::internal;
+  const bool limited = DEMI::set_thread_limit_environment(threads);
   // OpenBLAS chose its kernels when it was loaded: an older build runs SSE3
   // kernels on a recent CPU it does not know (internal/openblas.h), and the
   // factorizations take about 1.5x as long. Unless OPENBLAS_CORETYPE is set,
   // dem then sets it to this CPU's kernels and starts again.
-  CGAL::Density_equalizing_maps::internal::restart_with_openblas_kernels_of_this_cpu(argv);
-  std::vector<std::string> args(argv + 1, argv + argc);
-  if(args.empty()) { std::cerr << usage_text(); return 2; }
-  // --threads N, for every subcommand: the threads of the parallel loops (the
-  // maps are the same on any number); by default every core.
-  unsigned threads = 0;
-  if(!take_threads_option(args, threads)) return 2;
+  DEMI::restart_with_openblas_kernels_of_this_cpu(argv, limited);
+  DEMI::cap_sparse_solver_threads(threads); // holds if the new start failed
 #ifdef CGAL_LINKED_WITH_TBB
   std::unique_ptr<tbb::global_control> thread_limit;
   if(threads > 0)

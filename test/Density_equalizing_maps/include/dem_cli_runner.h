@@ -194,12 +194,15 @@ struct Result
   std::string out, err;
 };
 
-/// Runs `dem ARGS` in `folder` with a time limit, capturing stdout and stderr.
-inline Result run_dem(const Temporary_folder& folder, const std::string& args, int seconds = 120)
+/// Runs `dem ARGS` in `folder` with a time limit, capturing stdout and stderr;
+/// `environment` is a prefix of the command (e.g. "env -u OPENBLAS_NUM_THREADS").
+inline Result run_dem(const Temporary_folder& folder, const std::string& args, int seconds = 120,
+                      const std::string& environment = "")
 {
   const std::string out = folder / "stdout.txt", err = folder / "stderr.txt";
-  const std::string cmd = "timeout -s KILL " + std::to_string(seconds) + " \"" + std::string(DEM_CLI) + "\" " + args +
-                          " > \"" + out + "\" 2> \"" + err + "\"";
+  const std::string cmd = environment + (environment.empty() ? "" : " ") + "timeout -s KILL " +
+                          std::to_string(seconds) + " \"" + std::string(DEM_CLI) + "\" " + args + " > \"" + out +
+                          "\" 2> \"" + err + "\"";
   const int status = std::system(cmd.c_str());
   Result r;
   if(status != -1 && WIFEXITED(status)) r.code = WEXITSTATUS(status);

@@ -7,7 +7,8 @@
 
 // What the package needs to know of the BLAS under CHOLMOD's supernodal
 // factorizations, where their dense work runs: whether it may be called from
-// two threads at once, and whether OpenBLAS runs the kernels of this CPU.
+// two threads at once, whether OpenBLAS runs the kernels of this CPU, and how
+// many threads the factorizations run besides the caller's.
 //
 // OpenBLAS built for several CPUs (DYNAMIC_ARCH, as Debian's) chooses its
 // kernels once, when it is loaded, by the CPU's model, and falls back to its
@@ -24,6 +25,11 @@
 #include <unistd.h>
 #endif
 
+#ifdef CGAL_DEM_HAS_OPENMP_RUNTIME
+#include <omp.h>
+#endif
+
+#include <algorithm>
 #include <cstdlib>
 #include <cstring>
 #include <string>
@@ -80,19 +86,56 @@ inline const char* better_openblas_core_for_this_cpu()
 
 /// For a program's main(): when the loaded OpenBLAS runs kernels older than
 /// this CPU's and OPENBLAS_CORETYPE is not set, sets it and starts the program
-/// again (execv of /proc/self/exe with the same arguments); returns only when
-/// nothing was to be done or the new start failed. The computed results are
-/// the same up to rounding (other kernels sum in another order).
-inline void restart_with_openblas_kernels_of_this_cpu(char** argv)
+/// again (execv of /proc/self/exe with the same arguments); also starts again
+/// when `environment_changed` (the caller changed variables the libraries
+/// read when they are loaded, set_thread_limit_environment()). Returns only
+/// when nothing was to be done or the new start failed. The computed results
+/// are the same up to rounding (other kernels sum in another order).
+inline void restart_with_openblas_kernels_of_this_cpu(char** argv, bool environment_changed = false)
 {
 #if defined(CGAL_DEM_USE_CHOLMOD) && defined(__linux__)
-  if(std::getenv("OPENBLAS_CORETYPE")) return; // the user's choice, or already restarted
-  const char* core = better_openblas_core_for_this_cpu();
-  if(!core || setenv("OPENBLAS_CORETYPE", core, 1) != 0) return;
+  bool core_set = false;
+  if(!std::getenv("OPENBLAS_CORETYPE")) { // else the user's choice, or already restarted
+    const char* core = better_openblas_core_for_this_cpu();
+    core_set = core && setenv("OPENBLAS_CORETYPE", core, 1) == 0;
+  }
+  if(!core_set && !environment_changed) return;
   execv("/proc/self/exe", argv);
-  unsetenv("OPENBLAS_CORETYPE"); // the restart failed: go on with the kernels loaded
+  if(core_set) unsetenv("OPENBLAS_CORETYPE"); // the restart failed: go on with the kernels loaded
 #else
   (void)argv;
+  (void)environment_changed;
+#endif
+}
+
+/// For a program's main() with a thread limit (`dem --threads N`), before
+/// restart_with_openblas_kernels_of_this_cpu(): holds the two thread pools
+/// of the sparse factorizations to at most `threads` (fewer than the cores)
+/// from the moment their libraries are loaded: OPENBLAS_NUM_THREADS (a
+/// multithreaded OpenBLAS starts one thread per core when it is loaded, and
+/// they spin for about a tenth of a second before they sleep) and
+/// OMP_THREAD_LIMIT (CHOLMOD's OpenMP regions). A smaller value the user set
+/// is kept. Returns whether a variable changed: the program must then start
+/// again for the limit to hold (cap_sparse_solver_threads() holds it in the
+/// running process, but OpenBLAS's threads are already there).
+inline bool set_thread_limit_environment(unsigned threads)
+{
+#if defined(CGAL_DEM_USE_CHOLMOD) && defined(__unix__)
+  if(threads == 0) return false;
+  const long cores = sysconf(_SC_NPROCESSORS_ONLN);
+  if(long(threads) >= cores) return false; // every core: the pools' own sizes (OpenBLAS: one per core)
+  const long limit = long(threads);
+  bool changed = false;
+  for(const char* name : {"OPENBLAS_NUM_THREADS", "OMP_THREAD_LIMIT"}) {
+    const char* now = std::getenv(name);
+    const long current = now ? std::strtol(now, nullptr, 10) : 0;
+    if(current >= 1 && current <= limit) continue;
+    changed = setenv(name, std::to_string(limit).c_str(), 1) == 0 || changed;
+  }
+  return changed;
+#else
+  (void)threads;
+  return false;
 #endif
 }
 
@@ -118,6 +161,36 @@ inline bool blas_allows_two_concurrent_calls()
   return allowed;
 #else
   return false;
+#endif
+}
+
+/// For a program's thread limit (`dem --threads N`), in the running process:
+/// at most `threads` threads in the sparse factorizations too. The package's
+/// own loops take their number from TBB; the factorizations run on two other
+/// pools: the threads of a multithreaded OpenBLAS (one per core unless
+/// OPENBLAS_NUM_THREADS says otherwise), capped here at `threads`, and the
+/// OpenMP regions of CHOLMOD's supernodal factorization (which ask for four
+/// threads; Dynamic_openmp_threads lets the runtime give fewer), which with
+/// `threads` = 1 run on the calling thread alone (no region is active).
+/// Call it before any factorization: OpenBLAS's count is process-wide, and
+/// blas_allows_two_concurrent_calls() reads it once. OpenBLAS's threads
+/// started when it was loaded remain (set_thread_limit_environment() and a
+/// new start avoid them). OpenBLAS splits the larger dense blocks between its
+/// threads and adds their parts in another order, so the factors, and the
+/// maps, differ in the last bits with its number of threads (not with the
+/// number of the loops' threads).
+inline void cap_sparse_solver_threads(unsigned threads)
+{
+  if(threads == 0) return;
+#if defined(CGAL_DEM_USE_CHOLMOD) && defined(__unix__)
+  typedef int (*Get)();
+  typedef void (*Set)(int);
+  Get get = openblas_function<Get>("openblas_get_num_threads");
+  Set set = openblas_function<Set>("openblas_set_num_threads");
+  if(get && set && get() > int(threads)) set(int(threads));
+#endif
+#ifdef CGAL_DEM_HAS_OPENMP_RUNTIME
+  if(threads == 1) omp_set_max_active_levels(0);
 #endif
 }
 
