@@ -29,7 +29,6 @@
 #include <omp.h>
 #endif
 
-#include <algorithm>
 #include <cstdlib>
 #include <cstring>
 #include <string>
